@@ -1,0 +1,20 @@
+"""The core's own styles, announced through the same entry-point group (`dem`) as every plugin."""
+from .commands import COMMANDS
+from .create_atoms import CreateAtoms, SetCommand
+from .hookspecs import hookimpl
+from .integrate import INTEGRATORS
+from .read_data import ReadData
+from .region import REGIONS
+from .restart import RESTART_COMMANDS
+
+
+@hookimpl
+def dem_styles():
+    styles = COMMANDS + [CreateAtoms, SetCommand, ReadData] + RESTART_COMMANDS + REGIONS + INTEGRATORS
+    try:
+        from .dump_h5 import DumpH5
+        from .dump_vtk import DumpVTK
+        styles += [DumpH5, DumpVTK]
+    except ImportError:   # pragma: no cover - the dumps are part of the package
+        raise
+    return styles

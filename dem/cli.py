@@ -1,0 +1,76 @@
+"""The `dem` command: dem -in FILE [-var NAME VALUE ...] [-log FILE] [-screen none]"""
+import sys
+
+from .errors import DemError
+
+USAGE = "usage: dem -in FILE [-var NAME VALUE ...] [-log FILE|none] [-screen none] [-echo screen|log|both]"
+
+
+def parse(argv):
+    opts = {"in": None, "var": [], "log": "log.dem", "screen": True, "echo": None}
+    i = 0
+    while i < len(argv):
+        a = argv[i]
+        key = a.lstrip("-")
+        if key in ("in", "i"):
+            opts["in"] = argv[i + 1]
+            i += 2
+        elif key in ("var", "v"):
+            name = argv[i + 1]
+            j = i + 2
+            values = []
+            while j < len(argv) and not argv[j].startswith("-"):
+                values.append(argv[j])
+                j += 1
+            if not values:
+                raise DemError(f"-var {name} needs at least one value")
+            opts["var"].append((name, values))
+            i = j
+        elif key in ("log", "l"):
+            opts["log"] = None if argv[i + 1] == "none" else argv[i + 1]
+            i += 2
+        elif key in ("screen", "sc"):
+            opts["screen"] = argv[i + 1] != "none"
+            i += 2
+        elif key in ("echo", "e"):
+            opts["echo"] = argv[i + 1]
+            i += 2
+        elif key in ("h", "help"):
+            print(USAGE)
+            raise SystemExit(0)
+        else:
+            raise DemError(f"unknown command-line option '{a}'\n{USAGE}")
+    if opts["in"] is None:
+        raise DemError(f"no input script\n{USAGE}")
+    return opts
+
+
+def main(argv=None):
+    from .sim import Sim, fatal
+    argv = sys.argv[1:] if argv is None else argv
+    try:
+        opts = parse(argv)
+    except (DemError, IndexError) as e:
+        print(f"ERROR: {e if isinstance(e, DemError) else 'missing value after an option'}\n{USAGE}"
+              if not isinstance(e, DemError) else f"ERROR: {e}", file=sys.stderr)
+        return 2
+    sim = None
+    try:
+        sim = Sim(screen=opts["screen"], log=opts["log"], variables=opts["var"])
+        sim.print("dem 0.1.0 (Discrete Element Method, LAMMPS-style input)")
+        if opts["echo"]:
+            sim.input.one(f"echo {opts['echo']}")
+        sim.file(opts["in"])
+        return 0
+    except DemError as e:
+        return fatal(sim, e)
+    except KeyboardInterrupt:
+        print("ERROR: interrupted", file=sys.stderr)
+        return 130
+    finally:
+        if sim is not None:
+            sim.close()
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

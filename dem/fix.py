@@ -1,0 +1,70 @@
+"""Base class of fixes. A fix declares the stages it acts in (rule 4) with `stages`; `modify` calls it
+once per stage per step, in input-script order. Kernels do the per-particle work (rule 5)."""
+import enum
+
+from .errors import DemError
+
+
+class Stage(enum.IntFlag):
+    PRE_EXCHANGE = 1
+    PRE_NEIGHBOR = 2
+    POST_NEIGHBOR = 4
+    PRE_FORCE = 8
+    POST_FORCE = 16
+    INTEGRATE = 32
+    POST_INTEGRATE = 64
+    END_OF_STEP = 128
+
+
+STAGE_METHODS = {s: s.name.lower() for s in Stage}
+
+
+class Fix:
+    """fix ID group-ID style args ...
+
+    Subclasses set `style`, `stages`, and implement the stage methods named after the stages
+    (`post_force(self)`, `integrate(self)`...). `init()` runs before every run, `setup()` after the first
+    neighbor build of a run. Global state to restart goes through `state()`/`restore(state)`; per-particle
+    state goes in fields declared with `sim.atom.add_field` (named after the fix ID)."""
+
+    kind = "fix"
+    style = None
+    stages = Stage(0)
+    time_integrate = False
+
+    def __init__(self, sim, fid, group, args):
+        self.sim = sim
+        self.id = fid
+        self.group = group
+        self.groupbit = sim.groups.bit(group)
+        self.args = list(args)
+
+    def init(self):
+        pass
+
+    def setup(self):
+        pass
+
+    def max_radius(self):
+        """Bounding radius of particles this fix will create (ghost cutoff covers them from the start)."""
+        return 0.0
+
+    def thermo(self):
+        """Extra thermo keywords: {name: value}."""
+        return {}
+
+    def state(self):
+        return {}
+
+    def restore(self, state):
+        pass
+
+    def unfix(self):
+        pass
+
+    def particles_removed(self):
+        pass
+
+    def need(self, n, usage):
+        if len(self.args) < n:
+            raise DemError(f"fix {self.style}: too few arguments; usage: fix ID group {self.style} {usage}")

@@ -1,0 +1,120 @@
+"""Neighbor lists: linked cells on bounding spheres with a skin, half list in compressed rows (one row per
+owned particle: `offsets[i]:offsets[i+1]` index `neigh`), rebuilt only when the largest displacement since
+the last build exceeds half the skin (or a fix asks). Contact histories registered here follow the pairs
+across rebuilds."""
+import numpy as np
+
+from . import _neighbor
+from .errors import DemError
+
+
+class Neighbor:
+    def __init__(self, sim):
+        self.sim = sim
+        self.skin = None           # default: 10 % of the largest diameter
+        self.every = 1
+        self.delay = 0
+        self.check = True
+        self.offsets = None
+        self.neigh = np.zeros(1024, dtype=np.int32)
+        self.nentries = 0
+        self.xhold = np.zeros((0, 3))
+        self.hold_valid = False
+        self.last_build = -1
+        self.nbuilds = 0
+        self.ndanger = 0
+        self.histories = []
+        self.force_rebuild = False
+
+    # ----- settings ------------------------------------------------------------------------------
+    def cutmax(self):
+        """Largest pair cutoff: two of the largest bounding spheres plus the skin."""
+        return 2.0 * self.sim.modify.max_radius() + self.skin
+
+    def init(self):
+        rmax = self.sim.modify.max_radius()
+        if self.skin is None:
+            self.skin = 0.2 * rmax if rmax > 0 else 0.0
+        self.sim.comm.cutghost = 2.0 * rmax + self.skin
+
+    def invalidate(self):
+        """Particles were added, removed or moved by a command: the next setup rebuilds from scratch."""
+        self.hold_valid = False
+
+    # ----- per step ------------------------------------------------------------------------------
+    def decide(self, step):
+        if self.force_rebuild:
+            return True
+        since = step - self.last_build
+        if since < self.delay or since % self.every:
+            return False
+        if not self.check:
+            return True
+        atom = self.sim.atom
+        d2 = _neighbor.max_displacement_sq(atom.data["x"], self.xhold, atom.nlocal) if atom.nlocal else 0.0
+        if not np.isfinite(d2):
+            self.report_nonfinite()
+        half = 0.5 * self.skin
+        return self.sim.comm.any(d2 > half * half)
+
+    def rebuild(self, step, wrap=True):
+        """The full rebuild sequence of a step; `wrap=False` rebuilds from the positions of the last
+        build (a setup pass continuing a run), so that the list and the wrapping schedule are those of
+        the uninterrupted run."""
+        sim = self.sim
+        for h in self.histories:
+            h.pack()
+        atom = sim.atom
+        if wrap:
+            sim.modify.pre_exchange()
+            sim.domain.pbc()
+            sim.comm.exchange()
+            sim.comm.borders()
+            sim.modify.pre_neighbor()
+            self.build()
+            self.xhold = atom.data["x"][:atom.nlocal].copy()
+            self.hold_valid = True
+            self.last_build = step
+            self.nbuilds += 1
+            self.force_rebuild = False
+        else:
+            x_now = atom.data["x"][:atom.nlocal].copy()
+            atom.data["x"][:atom.nlocal] = self.xhold
+            sim.comm.borders()
+            self.build()
+            atom.data["x"][:atom.nlocal] = x_now
+            sim.comm.forward()
+        for h in self.histories:
+            h.unpack()
+        sim.modify.post_neighbor()
+
+    def build(self):
+        atom = self.sim.atom
+        nlocal, nall = atom.nlocal, atom.nall
+        self.offsets = np.zeros(nlocal + 1, dtype=np.int64)
+        binsize = max(self.cutmax(), 1e-300)
+        while True:
+            n = _neighbor.build_half(atom.data["x"], atom.data["radius"], atom.data["tag"], nlocal, nall,
+                                     self.skin, binsize, self.offsets, self.neigh)
+            if n >= 0:
+                break
+            self.neigh = np.zeros(int(-n * 1.3) + 64, dtype=np.int32)
+        self.nentries = n
+
+    def report_nonfinite(self):
+        atom = self.sim.atom
+        n = atom.nlocal
+        bad = ~np.all(np.isfinite(atom.data["x"][:n]) & np.isfinite(atom.data["v"][:n]), axis=1)
+        tags = atom.data["tag"][:n][bad][:5].tolist()
+        self.sim.update.nan_error(f" (particle ids {', '.join(map(str, tags))})")
+
+    def pairs(self):
+        """(i, j) index arrays of the current list (for analysis and tests, not for kernels)."""
+        counts = np.diff(self.offsets)
+        i = np.repeat(np.arange(len(counts)), counts)
+        return i, self.neigh[:self.nentries].copy()
+
+    def settings(self, skin):
+        if skin < 0:
+            raise DemError("neighbor skin must be >= 0")
+        self.skin = skin

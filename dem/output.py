@@ -1,0 +1,111 @@
+"""Output during a run: thermo lines, dumps and periodic restarts, and the end-of-run summary with the
+time per stage."""
+import resource
+
+from .errors import DemError
+from .thermo import Thermo
+from .update import TIMERS
+
+
+class Output:
+    def __init__(self, sim):
+        self.sim = sim
+        self.thermo = Thermo(sim)
+        self.dumps = {}
+        self.restart_every = 0
+        self.restart_files = []
+        self.last_thermo = None
+
+    # ----- dumps ----------------------------------------------------------------------------------
+    def add_dump(self, args):
+        if len(args) < 5:
+            raise DemError("dump needs: dump ID group style N file [args]")
+        did, group, style, every, path = args[:5]
+        cls = self.sim.registry.get("dump", style)
+        try:
+            every = int(every)
+        except ValueError:
+            raise DemError(f"dump {did}: N must be an integer, got '{every}'") from None
+        if every <= 0:
+            raise DemError(f"dump {did}: N must be > 0")
+        if did in self.dumps:
+            raise DemError(f"dump ID '{did}' already exists (undump it first)")
+        self.dumps[did] = cls(self.sim, did, group, every, path, args[5:])
+
+    def undump(self, did):
+        if did not in self.dumps:
+            from .errors import unknown
+            raise unknown("dump ID", did, self.dumps)
+        self.dumps.pop(did).close()
+
+    # ----- during a run ---------------------------------------------------------------------------
+    def setup(self):
+        step = self.sim.update.ntimestep
+        thermo = self.thermo
+        thermo.header()
+        thermo.line()
+        self.last_thermo = step
+        for dump in self.dumps.values():
+            if step % dump.every == 0:
+                dump.write(step)
+
+    def step(self, step):
+        every = self.thermo.every
+        last = step == self.sim.update.last_step
+        if (every and step % every == 0) or last:
+            self.thermo.line()
+            self.last_thermo = step
+        for dump in self.dumps.values():
+            if step % dump.every == 0:
+                dump.write(step)
+        if self.restart_every and step % self.restart_every == 0:
+            from .restart import write_restart
+            path = self.restart_files[(step // self.restart_every) % len(self.restart_files)]
+            write_restart(self.sim, path.replace("*", str(step)))
+
+    def emergency(self):
+        """Before an error stops a run: write the current frame and flush every file."""
+        step = self.sim.update.ntimestep
+        for dump in self.dumps.values():
+            try:
+                if getattr(dump, "last_step", None) != step:
+                    dump.write(step)
+                dump.flush()
+            except Exception:      # never mask the original error
+                pass
+
+    def finish(self, nsteps, loop, total):
+        sim = self.sim
+        natoms = sim.atom.natoms
+        up = sim.update
+        sim.print(f"Loop time of {loop:.4g} on {sim.comm.nprocs} procs for {nsteps} steps with {natoms} "
+                  f"particles")
+        if loop > 0 and nsteps:
+            sim.print(f"Performance: {nsteps / loop:.4g} steps/s, {nsteps * natoms / loop:.4g} particle-steps/s")
+        sim.print("")
+        sim.print("Section |  time (s)  | %total")
+        sim.print("--------+------------+-------")
+        accounted = 0.0
+        for name in TIMERS:
+            t = sim.comm.max(up.timers[name])
+            accounted += t
+            sim.print(f"{name:<8}| {t:10.4g} | {100 * t / loop if loop else 0:5.1f}")
+        other = max(loop - accounted, 0.0)
+        sim.print(f"{'other':<8}| {other:10.4g} | {100 * other / loop if loop else 0:5.1f}")
+        sim.print("")
+        nb = sim.neighbor
+        sim.print(f"Neighbor list builds = {nb.nbuilds}, pairs listed = {sim.comm.sum(nb.nentries)}, "
+                  f"skin = {nb.skin:g}")
+        peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+        sim.print(f"Peak memory: {peak:.1f} MiB per process")
+        sim.print(f"Total wall time (setup + loop): {total:.4g} s")
+        for dump in self.dumps.values():
+            dump.flush()
+
+    def close(self):
+        for dump in list(self.dumps.values()):
+            try:
+                dump.close()
+            except Exception:
+                pass
+        self.dumps.clear()

@@ -1,0 +1,149 @@
+"""Restart files: the complete state between two steps (particles with every per-particle field, contact
+and wall histories, neighbor-list reference positions, fix states, step and time), so that
+`read_restart` + the same commands continue a run bitwise on one rank.
+
+Particle order is kept as it is in memory (not sorted by id): the order in which forces are summed is
+then the same as in the uninterrupted run."""
+import os
+import pickle
+
+import numpy as np
+
+from .command import Command
+from .errors import DemError
+
+FORMAT = "dem-restart-1"
+
+
+def write_restart(sim, path):
+    atom = sim.atom
+    for h in sim.neighbor.histories:
+        h.pack()
+    n = atom.nlocal
+    fields = {name: atom.data[name][:n].copy() for name in atom.fields}
+    nb = sim.neighbor
+    state = {
+        "format": FORMAT,
+        "step": sim.update.ntimestep, "time": sim.update.time, "dt": sim.update.dt,
+        "lo": sim.domain.lo.copy(), "hi": sim.domain.hi.copy(), "boundary": sim.domain.boundary,
+        "ntypes": atom.ntypes, "natoms": atom.natoms, "max_tag": atom.max_tag, "groups": sim.groups.names,
+        "nlost": sim.domain.nlost,
+        "fields": fields,
+        "field_specs": {k: (v[0], v[1].str, v[2], v[3]) for k, v in atom.fields.items()},
+        "neighbor": {"xhold": nb.xhold.copy() if nb.hold_valid else None, "last_build": nb.last_build,
+                     "skin": nb.skin, "every": nb.every, "delay": nb.delay, "check": nb.check},
+        "fixes": {f.id: f.state() for f in sim.modify.fixes},
+        "pair": sim.pair.state() if sim.pair is not None else {},
+    }
+    if sim.comm.nprocs > 1:
+        state = sim.comm.gather_restart(state)
+    if sim.comm.me == 0:
+        tmp = f"{path}.tmp{os.getpid()}"
+        try:
+            with open(tmp, "wb") as fh:
+                pickle.dump(state, fh, protocol=pickle.HIGHEST_PROTOCOL)
+            os.replace(tmp, path)
+        except OSError as e:
+            raise DemError(f"write_restart: cannot write '{path}': {e.strerror}") from None
+
+
+def read_restart(sim, path):
+    try:
+        with open(path, "rb") as fh:
+            state = pickle.load(fh)
+    except OSError as e:
+        raise DemError(f"read_restart: cannot open '{path}': {e.strerror}") from None
+    except (pickle.UnpicklingError, EOFError, AttributeError):
+        raise DemError(f"read_restart: '{path}' is not a dem restart file") from None
+    if not isinstance(state, dict) or state.get("format") != FORMAT:
+        raise DemError(f"read_restart: '{path}' is not a dem restart file")
+    if sim.domain.box_exist:
+        raise DemError("read_restart: the box already exists (read_restart creates it)")
+    dom, atom, up, nb = sim.domain, sim.atom, sim.update, sim.neighbor
+    dom.set_boundary(["".join(b) if b[0] != b[1] else b[0] for b in state["boundary"]])
+    dom.set_box(state["lo"], state["hi"])
+    dom.nlost = state["nlost"]
+    atom.ntypes = state["ntypes"]
+    for name in state["groups"]:
+        sim.groups.find_or_create(name)
+    up.ntimestep, up.time = state["step"], state["time"]
+    if up.dt is None:
+        up.dt = state["dt"]
+    fields = state["fields"]
+    if sim.comm.nprocs > 1:
+        fields, xhold = sim.comm.scatter_restart(state)
+    else:
+        xhold = state["neighbor"]["xhold"]
+    for name, values in fields.items():
+        if name not in atom.fields:
+            atom.pending[name] = values
+    for name, (tail, dtype, fill, border) in state["field_specs"].items():
+        if name in atom.pending:
+            continue
+        if name not in atom.fields:
+            atom.add_field(name, tuple(tail), np.dtype(dtype), fill, border)
+    atom.unpack({k: v for k, v in fields.items() if k in atom.fields})
+    atom.natoms, atom.max_tag = state["natoms"], state["max_tag"]
+    ninfo = state["neighbor"]
+    nb.skin, nb.every, nb.delay, nb.check = ninfo["skin"], ninfo["every"], ninfo["delay"], ninfo["check"]
+    if xhold is not None and len(xhold) == atom.nlocal:
+        nb.xhold = xhold
+        nb.hold_valid = True
+        nb.last_build = ninfo["last_build"]
+    else:
+        nb.invalidate()
+    sim.modify.restart_states = dict(state["fixes"])
+    sim.restart_pair_state = state["pair"]
+    sim.print(f"Read restart {path}: {atom.natoms} particles at step {up.ntimestep}")
+
+
+class WriteRestart(Command):
+    """write_restart FILE
+
+    Writes the complete state (see read_restart). The file is written to a temporary name and renamed, so
+    an interrupted write never leaves a broken restart."""
+    style = "write_restart"
+    usage = "file"
+
+    def __call__(self, words):
+        a = self.args(words)
+        a.exactly(1)
+        self.sim.domain.require_box("write_restart")
+        write_restart(self.sim, a[0])
+
+
+class ReadRestart(Command):
+    """read_restart FILE
+
+    Restores box, particles (all fields, contact and wall histories), step, time, time step and neighbor
+    state; fixes defined afterwards with the same IDs take their saved state back. Pair style,
+    coefficients and fixes are re-specified by the script, as in LAMMPS. With the same commands, the
+    continued run is bitwise identical to the uninterrupted one on one rank."""
+    style = "read_restart"
+    usage = "file"
+
+    def __call__(self, words):
+        a = self.args(words)
+        a.exactly(1)
+        read_restart(self.sim, a[0])
+
+
+class Restart(Command):
+    """restart N FILE [FILE2]
+
+    Writes a restart every N steps (0 turns it off); `*` in the name is replaced by the step, two files
+    alternate."""
+    style = "restart"
+    usage = "N file [file2]"
+
+    def __call__(self, words):
+        a = self.args(words)
+        a.need(1)
+        out = self.sim.output
+        out.restart_every = a.int(0, "N", nonneg=True)
+        if out.restart_every:
+            a.need(2)
+            out.restart_files = a.words[1:3]
+
+
+RESTART_COMMANDS = [WriteRestart, ReadRestart, Restart]

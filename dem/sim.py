@@ -1,0 +1,114 @@
+"""The root object (rule 1): one Sim owns comm, atom, domain, neighbor, pair, modify, update, output,
+input and registry; every style receives the sim and reaches what it needs from it."""
+import sys
+
+import numpy as np
+
+from .atom import Atom
+from .comm import Comm
+from .domain import Domain
+from .errors import DemError
+from .group import Groups
+from .modify import Modify
+from .neighbor import Neighbor
+from .output import Output
+from .registry import default_registry
+from .update import Update
+
+
+class Sim:
+    """A simulation driven by LAMMPS-style commands::
+
+        sim = dem.Simulation()
+        sim.command("units si")
+        sim.file("in.pour")
+        sim.run(1000)
+        x = sim.gather("x")        # global array ordered by particle id
+    """
+
+    def __init__(self, screen=True, log=None, variables=(), registry=None, comm=None):
+        from .input import Input   # late: the interpreter imports command machinery
+        self.registry = registry or default_registry()
+        self.comm = comm or Comm(self)
+        self.screen = screen and self.comm.me == 0
+        self.logfile = open(log, "w") if (log and self.comm.me == 0) else None
+        self.atom = Atom()
+        self.domain = Domain(self)
+        self.groups = Groups(self)
+        self.neighbor = Neighbor(self)
+        self.pair = None
+        self.modify = Modify(self)
+        self.update = Update(self)
+        self.output = Output(self)
+        self.input = Input(self)
+        self.units = "si"
+        self.dimension = 3
+        if variables:
+            self.input.set_cli_vars(list(variables))
+
+    # ----- driving ---------------------------------------------------------------------------------
+    def command(self, line):
+        self.input.one(line)
+        return self
+
+    def commands(self, text):
+        self.input.lines(text)
+        return self
+
+    def file(self, path):
+        self.input.file(path)
+        return self
+
+    def run(self, nsteps):
+        self.update.run(int(nsteps))
+        return self
+
+    # ----- output ----------------------------------------------------------------------------------
+    def print(self, text, screen=True):
+        if self.comm.me != 0:
+            return
+        if screen and self.screen:
+            print(text, flush=True)
+        if self.logfile:
+            self.logfile.write(text + "\n")
+            self.logfile.flush()
+
+    def warning(self, text):
+        self.print(f"WARNING: {text}")
+
+    def thermo_keyword(self, name):
+        return self.output.thermo.keyword(name)
+
+    def gather(self, name):
+        """The global per-particle array `name`, ordered by particle id (tag)."""
+        local = self.atom.local(name)
+        tags = self.atom.local("tag")
+        tags, values = self.comm.gather_rows(tags, local)
+        order = np.argsort(tags, kind="stable")
+        return values[order]
+
+    def close(self):
+        """Flush and close every output file (also after an error: nothing half-written stays open)."""
+        self.output.close()
+        if self.logfile:
+            self.logfile.close()
+            self.logfile = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
+
+
+def fatal(sim, error):
+    """Report a DemError on stderr/log and return the exit status."""
+    text = f"ERROR: {error}"
+    if sim is not None:
+        sim.print(text, screen=False)
+    print(text, file=sys.stderr, flush=True)
+    return 1
+
+
+__all__ = ["Sim", "DemError", "fatal"]

@@ -1,0 +1,183 @@
+"""The run: setup, the timestep loop and its timers.
+
+One step computes forces on the current state, then integrates (leap-frog Verlet, Grains3D eq. 9):
+    [rebuild: PRE_EXCHANGE, pbc, exchange, borders, PRE_NEIGHBOR, build, POST_NEIGHBOR] or forward comm
+    clear forces; PRE_FORCE; pair; reverse comm; POST_FORCE (gravity, walls, damping)
+    INTEGRATE (v(n+1/2) = v(n-1/2) + dt F(n)/m; x(n+1) = x(n) + dt v(n+1/2)); POST_INTEGRATE; END_OF_STEP
+    output
+Velocities are stored at half steps, so the state between steps is complete without forces: a new run (or a
+run read from a restart) needs no setup force pass and continues the trajectory bitwise.
+"""
+import math
+import time
+
+import numpy as np
+
+from .errors import DemError
+
+TIMERS = ("pair", "neigh", "comm", "modify", "integrate", "output")
+
+
+class Update:
+    def __init__(self, sim):
+        self.sim = sim
+        self.dt = None
+        self.ntimestep = 0
+        self.time = 0.0
+        self.first_step = 0
+        self.last_step = 0
+        self.running = False
+        self.timers = dict.fromkeys(TIMERS, 0.0)
+        self.wall_start = None
+        self.max_overlap_fraction = 0.2
+        self.vsync = 0.0   # v + vsync * f / m is the full-step velocity of the last force evaluation
+
+    # ----- setup ----------------------------------------------------------------------------------
+    def setup(self):
+        sim = self.sim
+        sim.domain.require_box("run")
+        if self.dt is None:
+            raise DemError("no time step: use 'timestep DT' before run")
+        if not sim.modify.integrators:
+            sim.warning("no integrator fix (e.g. 'fix 1 all nve/sphere'): particles will not move")
+        if sim.pair is not None:
+            sim.pair.init()
+        sim.neighbor.init()
+        atom, nb = sim.atom, sim.neighbor
+        continuing = nb.hold_valid and len(nb.xhold) == atom.nlocal
+        nb.rebuild(self.ntimestep, wrap=not continuing)
+        sim.modify.setup()
+        self.check_timestep()
+        self.force_pass(advance=False)
+        self.vsync = 0.5 * self.dt
+        sim.output.setup()
+
+    def check_timestep(self):
+        pair = self.sim.pair
+        tc = pair.min_contact_time() if pair is not None else None
+        tcw = [f.min_contact_time() for f in self.sim.modify.fixes if hasattr(f, "min_contact_time")]
+        tcs = [t for t in [tc] + tcw if t]
+        if tcs:
+            tmin = min(tcs)
+            self.min_contact_time = tmin
+            if self.dt > tmin / 10.0:
+                self.sim.warning(f"time step {self.dt:g} exceeds T_c/10 = {tmin / 10:g} of the stiffest, "
+                                 f"lightest contact (T_c = {tmin:g}); contacts will be under-resolved")
+        else:
+            self.min_contact_time = None
+
+    # ----- the loop -------------------------------------------------------------------------------
+    def run(self, nsteps):
+        if nsteps < 0:
+            raise DemError("run needs a number of steps >= 0")
+        sim = self.sim
+        sim.modify.init()
+        self.timers = dict.fromkeys(TIMERS, 0.0)
+        self.first_step = self.ntimestep
+        self.last_step = self.ntimestep + nsteps
+        self.running = True
+        t_setup = time.perf_counter()
+        try:
+            self.setup()
+            self.wall_start = time.perf_counter()
+            for _ in range(nsteps):
+                self.step()
+        finally:
+            self.running = False
+        loop = time.perf_counter() - (self.wall_start or t_setup)
+        sim.output.finish(nsteps, loop, time.perf_counter() - t_setup)
+
+    def step(self):
+        sim = self.sim
+        timers = self.timers
+        clock = time.perf_counter
+        t0 = clock()
+        if sim.neighbor.decide(self.ntimestep):
+            sim.neighbor.rebuild(self.ntimestep)
+            t1 = clock()
+            timers["neigh"] += t1 - t0
+        else:
+            sim.comm.forward()
+            t1 = clock()
+            timers["comm"] += t1 - t0
+        t2 = self.force_pass(advance=True, t_start=t1)
+        sim.modify.integrate()
+        t3 = clock()
+        timers["integrate"] += t3 - t2
+        sim.modify.post_integrate()
+        sim.modify.end_of_step()
+        self.ntimestep += 1
+        self.time += self.dt
+        self.vsync = -0.5 * self.dt
+        t4 = clock()
+        timers["modify"] += t4 - t3
+        sim.output.step(self.ntimestep)
+        timers["output"] += clock() - t4
+
+    def force_pass(self, advance=True, t_start=None):
+        sim = self.sim
+        clock = time.perf_counter
+        timers = self.timers
+        t0 = t_start if t_start is not None else clock()
+        atom = sim.atom
+        atom.data["f"][:atom.nall] = 0.0
+        atom.data["torque"][:atom.nall] = 0.0
+        if advance:
+            sim.modify.pre_force()
+        t1 = clock()
+        timers["modify"] += t1 - t0
+        pair = sim.pair
+        if pair is not None:
+            pair.compute(advance)
+        t2 = clock()
+        timers["pair"] += t2 - t1
+        sim.comm.reverse()
+        t3 = clock()
+        timers["comm"] += t3 - t2
+        if advance:
+            sim.modify.post_force()
+            self.check_overlap()
+        t4 = clock()
+        timers["modify"] += t4 - t3
+        return t4
+
+    def check_overlap(self):
+        pair = self.sim.pair
+        if pair is None:
+            return
+        worst = self.sim.comm.max(pair.max_overlap)
+        if worst > self.max_overlap_fraction:
+            self.sim.output.emergency()
+            tags = getattr(pair, "max_overlap_tags", None)
+            ids = f" between particles {tags[0]} and {tags[1]}" if tags else ""
+            tc = getattr(self, "min_contact_time", None)
+            hint = (f"time step {self.dt:g} vs T_c = {tc:g} ({tc / self.dt:.1f} steps per contact)"
+                    if tc else "check the stiffness and the time step")
+            raise DemError(f"overlap of {worst:.3g} x diameter{ids} at step {self.ntimestep} exceeds the "
+                           f"limit {self.max_overlap_fraction:g} (thermo_modify overlap)",
+                           hint=hint + "; a stiffer kn or a smaller time step reduces overlaps")
+
+    def nan_error(self, detail):
+        self.sim.output.emergency()
+        tc = getattr(self, "min_contact_time", None)
+        hint = f"time step {self.dt:g} vs T_c = {tc:g}" if tc else "check the time step"
+        raise DemError(f"non-finite position or velocity at step {self.ntimestep}{detail}",
+                       hint=hint + " (at least 10, better 50 steps per contact)")
+
+    # ----- helpers --------------------------------------------------------------------------------
+    def elapsed(self):
+        return time.perf_counter() - self.wall_start if self.wall_start else 0.0
+
+    def progress(self):
+        """(fraction done, steps per second, seconds left) of the current run."""
+        done = self.ntimestep - self.first_step
+        total = max(self.last_step - self.first_step, 1)
+        if not self.running or self.wall_start is None:
+            return done / total, 0.0, math.inf
+        elapsed = time.perf_counter() - self.wall_start
+        tps = done / elapsed if elapsed > 0 else 0.0
+        eta = (total - done) / tps if tps > 0 else math.inf
+        return done / total, tps, eta
+
+
+__all__ = ["Update", "TIMERS", "np"]

@@ -1,0 +1,68 @@
+"""The Grains3D contact law (Part III eq. 10-16), shared by every contact geometry (spheres, walls, and
+later convex bodies, glued composites, polyhedra): coefficients, their table per type pair, and contact
+times. The force itself is computed by the inline nogil functions of `law.pxd`."""
+import math
+
+import numpy as np
+
+from dem.errors import DemError, did_you_mean
+
+# columns of a coefficient row, in the order law.pxd reads them
+KN, BETA, MU, GAMMA_T, KS, MU_ROLL, EN = range(7)
+NCOEFF = 7
+KEYWORDS = {"kn": "normal stiffness (N/m)", "en": "normal restitution coefficient (0 < en <= 1)",
+            "mu": "Coulomb friction coefficient", "gamma_t": "tangential dissipative coefficient (1/s)",
+            "ks": "tangential spring stiffness (N/m), needs contact history",
+            "mu_roll": "rolling resistance coefficient (dimensionless, times R_eff |F_n|)"}
+DEFAULTS = {"mu": 0.0, "gamma_t": 0.0, "ks": 0.0, "mu_roll": 0.0}
+
+
+def parse(words, what, required=("kn", "en")):
+    """Parse `kn X en X [mu X] [gamma_t X] [ks X] [mu_roll X]` into a dict (missing optional -> default)."""
+    out = {}
+    if len(words) % 2:
+        raise DemError(f"{what}: coefficients come as 'keyword value' pairs, got {' '.join(words)}")
+    for key, value in zip(words[::2], words[1::2]):
+        if key not in KEYWORDS:
+            raise DemError(f"{what}: unknown coefficient '{key}'{did_you_mean(key, KEYWORDS)}; "
+                           f"known: {', '.join(KEYWORDS)}")
+        try:
+            out[key] = float(value)
+        except ValueError:
+            raise DemError(f"{what}: {key} must be a number, got '{value}'") from None
+    missing = [k for k in required if k not in out]
+    if missing:
+        raise DemError(f"{what}: missing {', '.join(missing)} ({'; '.join(KEYWORDS[k] for k in missing)})")
+    check(out, what)
+    return out
+
+
+def check(c, what):
+    if "kn" in c and c["kn"] <= 0:
+        raise DemError(f"{what}: kn must be > 0")
+    if "en" in c and not 0 < c["en"] <= 1:
+        raise DemError(f"{what}: en must be in (0, 1]")
+    for k in ("mu", "gamma_t", "ks", "mu_roll"):
+        if c.get(k, 0.0) < 0:
+            raise DemError(f"{what}: {k} must be >= 0")
+
+
+def beta(en):
+    """gamma_n = beta * omega0 with omega0 = sqrt(kn / m_ij) (eq. 16 with the reduced mass)."""
+    ln = math.log(en)
+    return -ln / math.sqrt(math.pi ** 2 + ln * ln)
+
+
+def row(c):
+    r = np.zeros(NCOEFF)
+    r[KN], r[BETA], r[EN] = c["kn"], beta(c["en"]), c["en"]
+    r[MU], r[GAMMA_T] = c.get("mu", 0.0), c.get("gamma_t", 0.0)
+    r[KS], r[MU_ROLL] = c.get("ks", 0.0), c.get("mu_roll", 0.0)
+    return r
+
+
+def contact_time(kn, en, meff):
+    """T_c = pi / sqrt(omega0^2 - gamma_n^2) (eq. 12)."""
+    w0 = math.sqrt(kn / meff)
+    g = beta(en) * w0
+    return math.pi / math.sqrt(w0 * w0 - g * g)

@@ -1,0 +1,61 @@
+# cython: language_level=3
+"""The Grains3D contact law at one contact point (Part III eq. 10), shared by all contact geometries.
+
+    F_n = kn delta n - 2 gamma_n m_ij U_rn,       gamma_n = beta sqrt(kn / m_ij)   (eq. 16)
+    F_t = -min(mu |F_n|, |-2 gamma_t m_ij U_rt - k_s xi|) t,   xi = integral of U_rt over the contact
+
+`c` points at a coefficient row: kn, beta, mu, gamma_t, ks, mu_roll, en (dem_contact.row).
+`vr` is the velocity of body i relative to body j at the contact point, `n` the unit normal from j to i.
+`xi` (3 values, may be NULL when ks = 0) is the tangential spring history; with `advance` false (setup
+passes) it is read but never changed. Returns the elastic energy 0.5 kn delta^2."""
+from libc.math cimport sqrt
+
+
+cdef inline double hooke(const double* c, double delta, const double* n, const double* vr, double meff,
+                         double* xi, double dt, bint advance, double* fn, double* ft) noexcept nogil:
+    cdef double kn = c[0], mu = c[2], gt = c[3], ks = c[4]
+    cdef double vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2]
+    cdef double fnmag = kn * delta - 2.0 * c[1] * sqrt(kn * meff) * vn
+    cdef double vt[3]
+    cdef double dampt = 2.0 * gt * meff
+    cdef double ftmag, cap, scale, xin, old2, new2
+    cdef int d
+    for d in range(3):
+        fn[d] = fnmag * n[d]
+        vt[d] = vr[d] - vn * n[d]
+    if mu == 0.0:
+        ft[0] = 0.0
+        ft[1] = 0.0
+        ft[2] = 0.0
+        return 0.5 * kn * delta * delta
+    if ks > 0.0 and xi != NULL:
+        if advance:
+            # keep the spring in the current tangent plane, with its length (the contact rotates)
+            xin = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2]
+            old2 = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]
+            if xin != 0.0:
+                for d in range(3):
+                    xi[d] -= xin * n[d]
+                new2 = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]
+                if new2 > 0.0:
+                    scale = sqrt(old2 / new2)
+                    for d in range(3):
+                        xi[d] *= scale
+            for d in range(3):
+                xi[d] += vt[d] * dt
+        for d in range(3):
+            ft[d] = -ks * xi[d] - dampt * vt[d]
+    else:
+        for d in range(3):
+            ft[d] = -dampt * vt[d]
+    ftmag = sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2])
+    cap = mu * (fnmag if fnmag > 0.0 else -fnmag)
+    if ftmag > cap:
+        scale = cap / ftmag if ftmag > 0.0 else 0.0
+        for d in range(3):
+            ft[d] *= scale
+        if ks > 0.0 and xi != NULL and advance:
+            # sliding: the spring holds exactly the Coulomb force (minus the viscous part)
+            for d in range(3):
+                xi[d] = -(ft[d] + dampt * vt[d]) / ks
+    return 0.5 * kn * delta * delta

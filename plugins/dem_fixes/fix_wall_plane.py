@@ -1,0 +1,108 @@
+"""fix wall/plane"""
+import numpy as np
+
+import dem_contact
+from dem.errors import DemError
+from dem.fix import Fix, Stage
+
+from . import _walls
+
+
+class FixWallPlane(Fix):
+    """fix ID group wall/plane xplane|yplane|zplane LO HI [...] [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
+
+    Fixed planar walls. Each `xplane LO HI` adds a wall at x = LO facing +x and one at x = HI facing -x;
+    NULL skips one (`zplane 0 NULL`: a floor only). Particles touching a wall feel the Grains3D law with
+    the reduced mass m_ij = m_i (the wall is an obstacle of infinite mass) and their own tangential
+    history per wall (kept per particle: it survives rebuilds, restarts and migration).
+    Coefficients: given here for every type, or, when left out, those of each type with itself from
+    pair_coeff. Example: `fix floor all wall/plane zplane 0.0 NULL kn 1000 en 0.5 mu 0.5 ks 285.7`."""
+
+    style = "wall/plane"
+    stages = Stage.POST_FORCE
+
+    def __init__(self, sim, fid, group, args):
+        super().__init__(sim, fid, group, args)
+        usage = "fix ID group wall/plane xplane LO HI [yplane ..] [zplane ..] [kn .. en .. mu ..]"
+        axes, positions, sides = [], [], []
+        i = 0
+        while i < len(args) and args[i] in ("xplane", "yplane", "zplane"):
+            if i + 2 >= len(args):
+                raise DemError(f"fix {fid} wall/plane: {args[i]} needs LO and HI (or NULL); usage: {usage}")
+            d = "xyz".index(args[i][0])
+            for word, side in ((args[i + 1], 1.0), (args[i + 2], -1.0)):
+                if word == "NULL":
+                    continue
+                try:
+                    pos = float(word)
+                except ValueError:
+                    raise DemError(f"fix {fid} wall/plane: wall position must be a number or NULL, got "
+                                   f"'{word}'") from None
+                axes.append(d)
+                positions.append(pos)
+                sides.append(side)
+            i += 3
+        if not axes:
+            raise DemError(f"fix {fid} wall/plane: no wall given; usage: {usage}")
+        self.axis = np.array(axes, dtype=np.int32)
+        self.position = np.array(positions)
+        self.side = np.array(sides)
+        self.law = dem_contact.parse(args[i:], f"fix {fid} wall/plane", required=()) if i < len(args) else {}
+        if self.law and not {"kn", "en"} <= set(self.law):
+            raise DemError(f"fix {fid} wall/plane: give both kn and en (or neither, to use pair_coeff I I)")
+        self.stats = np.zeros(2)
+        self.ncontacts = 0
+        self.max_overlap = 0.0
+
+    def init(self):
+        sim = self.sim
+        nt = sim.atom.ntypes
+        nw = len(self.axis)
+        table = np.zeros((nw, nt + 1, dem_contact.NCOEFF))
+        for t in range(1, nt + 1):
+            if self.law:
+                row = dem_contact.row(self.law)
+            else:
+                if sim.pair is None or not hasattr(sim.pair, "coefficients"):
+                    raise DemError(f"fix {self.id} wall/plane: no coefficients given and no pair style to "
+                                   f"take them from")
+                row = sim.pair.coefficients(t, t)
+            table[:, t] = row
+        self.table = table
+        self.use_history = bool(np.any(table[:, 1:, dem_contact.KS] > 0))
+        if self.use_history:
+            self.sim.atom.add_field(f"fix_{self.id}_xi", (3 * nw,), np.float64, 0.0)
+
+    def post_force(self):
+        self.compute(True)
+
+    def compute(self, advance):
+        sim = self.sim
+        a = sim.atom.data
+        xi = a[f"fix_{self.id}_xi"] if self.use_history else np.zeros((1, 3))
+        _walls.plane_walls(a["x"], a["v"], a["omega"], a["f"], a["torque"], a["radius"], a["rmass"],
+                           a["type"], a["mask"], int(self.groupbit), sim.atom.nlocal, self.axis,
+                           self.position, self.side, self.table, xi, self.use_history, sim.update.dt,
+                           advance, self.stats)
+        self.ncontacts = int(self.stats[0])
+        self.max_overlap = float(self.stats[1])
+
+    def min_contact_time(self):
+        atom = self.sim.atom
+        n = atom.nlocal
+        if n == 0:
+            return None
+        types = atom.data["type"][:n]
+        tmin = None
+        for t in np.unique(types):
+            m = float(atom.data["rmass"][:n][types == t].min())
+            row = self.table[0, t]
+            tc = dem_contact.contact_time(row[dem_contact.KN], row[dem_contact.EN], m)
+            tmin = tc if tmin is None else min(tmin, tc)
+        return self.sim.comm.min(tmin)
+
+    def thermo(self):
+        return {"contacts": self.sim.comm.sum(self.ncontacts)}
+
+    def unfix(self):
+        self.sim.atom.remove_field(f"fix_{self.id}_xi")
