@@ -1,0 +1,225 @@
+"""dump style vtk: one VTK XML UnstructuredGrid file (.vtu) per frame and a .pvd collection."""
+import base64
+import os
+from xml.sax.saxutils import quoteattr
+
+import numpy as np
+
+from .dump import Dump, atomic_write
+from .errors import DemError
+
+VTK_VERTEX = 1
+VTK_TRIANGLE = 5
+VTK_POLYGON = 7
+
+_VTK_TYPES = {("f", 8): "Float64", ("f", 4): "Float32", ("i", 8): "Int64", ("i", 4): "Int32",
+              ("i", 1): "Int8", ("u", 1): "UInt8", ("u", 4): "UInt32", ("u", 8): "UInt64"}
+
+
+def _little(a):
+    a = np.ascontiguousarray(a)
+    return a.astype(a.dtype.newbyteorder("<"), copy=False)
+
+
+class _Arrays:
+    """Collects DataArray elements, inline ASCII or appended base64 (UInt64 byte-count header)."""
+
+    def __init__(self, binary):
+        self.binary = binary
+        self.blocks = []
+        self.offset = 0
+
+    def element(self, name, array, indent, ntuples=None):
+        a = _little(np.asarray(array))
+        ncomp = 1 if a.ndim == 1 else int(np.prod(a.shape[1:]))
+        vtype = _VTK_TYPES[(a.dtype.kind, a.dtype.itemsize)]
+        attrs = f'type="{vtype}"'
+        if name is not None:
+            attrs += f" Name={quoteattr(name)}"
+        if ncomp != 1:
+            attrs += f' NumberOfComponents="{ncomp}"'
+        if ntuples is not None:
+            attrs += f' NumberOfTuples="{ntuples}"'
+        if self.binary:
+            raw = np.array([a.nbytes], dtype="<u8").tobytes() + a.tobytes()
+            block = base64.b64encode(raw)
+            self.blocks.append(block)
+            text = f'{indent}<DataArray {attrs} format="appended" offset="{self.offset}"/>\n'
+            self.offset += len(block)
+            return text
+        flat = a.ravel()
+        values = " ".join(repr(v) for v in flat.tolist()) if a.dtype.kind == "f" else \
+            " ".join(str(v) for v in flat.tolist())
+        return f'{indent}<DataArray {attrs} format="ascii">{values}</DataArray>\n'
+
+    def appended(self):
+        if not self.binary:
+            return ""
+        return '  <AppendedData encoding="base64">\n   _' + b"".join(self.blocks).decode("ascii") + \
+            "\n  </AppendedData>\n"
+
+
+class DumpVTK(Dump):
+    """dump ID group-ID vtk N file_*.vtu [fields name ...] [format binary|ascii] [pvd file.pvd|none]
+
+    Writes one VTK XML UnstructuredGrid file per frame (ParaView, OVITO, VisIt, meshio read them):
+    ``*`` in the file name is replaced by the step number (``out/grains_*.vtu`` gives
+    ``out/grains_1000.vtu``); a name without ``*`` gets ``_<step>`` before its extension. Each particle is
+    a point (cell VTK_VERTEX) with point data ``id type velocity omega orientation radius mass shape``
+    (those chosen by ``fields``); ``radius`` is the active scalar: in ParaView draw spheres with a Glyph
+    filter (Sphere, Scale Array ``radius``, scale factor 2). Field data: ``TimeValue``, ``step``,
+    ``box_lo``, ``box_hi``.
+
+    A ``.pvd`` collection listing every frame with its time is rewritten after each frame; open it in
+    ParaView to get the time series with the right times. Default name: the file name without ``*`` and
+    the separator before it (``out/grains_*.vtu`` gives ``out/grains.pvd``; ``*.vtu`` gives ``ID.pvd``).
+
+    Example::
+
+        dump movie all vtk 2000 post/pour_*.vtu
+        dump light all vtk 500 post/v_*.vtu fields id velocity radius format ascii pvd post/v.pvd
+
+    Keywords (defaults first):
+
+    * ``fields name ...``: the point data to write (default all; positions are always written).
+    * ``format binary|ascii``: ``binary`` is base64 appended data (exact, compact), ``ascii`` writes
+      exact decimal values (larger, human-readable).
+    * ``pvd FILE|none``: name of the collection file, or none.
+
+    Every file is written to a temporary file and renamed into place: a reader never sees a
+    half-written frame. Frames written again at the same step replace the earlier entry of the .pvd.
+    """
+
+    style = "vtk"
+    keywords = {"fields": None, "format": 1, "pvd": 1}
+
+    def __init__(self, sim, did, group, every, path, args):
+        self.binary = True
+        self.pvd_path = ""        # "" = default, None = no collection
+        super().__init__(sim, did, group, every, path, args)
+        root, ext = os.path.splitext(self.path)
+        if ext.lower() != ".vtu":
+            raise DemError(f"dump {did}: dump vtk writes VTK XML UnstructuredGrid files: the file name "
+                           f"must end in .vtu ('{self.path}')")
+        if self.path.count("*") > 1:
+            raise DemError(f"dump {did}: at most one '*' in the file name ('{self.path}')")
+        if "*" not in self.path:
+            self.pattern = root + "_*" + ext
+        else:
+            self.pattern = self.path
+        if self.pvd_path == "":
+            folder, base = os.path.split(self.pattern)
+            stem = os.path.splitext(base)[0].replace("*", "").rstrip("_-. ")
+            self.pvd_path = os.path.join(folder, (stem or str(did)) + ".pvd")
+        self._collection = {}     # step -> (time, file path)
+
+    def keyword(self, word, values):
+        if word == "format":
+            if values[0] not in ("binary", "ascii"):
+                raise DemError(f"dump {self.id}: format must be binary or ascii, got '{values[0]}'")
+            self.binary = values[0] == "binary"
+        elif word == "pvd":
+            self.pvd_path = None if values[0] == "none" else values[0]
+        else:
+            super().keyword(word, values)
+
+    def frame_path(self, step):
+        return self.pattern.replace("*", str(int(step)))
+
+    def gathered_fields(self):
+        names = super().gathered_fields()
+        if getattr(self.sim, "shapes", None) is not None:      # to pose the meshes of shaped particles
+            names += [n for n in ("shape", "orientation") if n not in names]
+        return names
+
+    # ----- geometry -------------------------------------------------------------------------------
+    def geometry(self, frame):
+        """(points (p, 3), connectivity, offsets, cell types, owner) of a frame. `owner` (p,) is the
+        particle index of each point, or None when there is one point per particle (all spheres)."""
+        x = frame.arrays["position"]
+        n = len(x)
+        meshes = self.particle_meshes(frame)
+        if not meshes:
+            idx = np.arange(n, dtype=np.int64)
+            return x, idx, idx + 1, np.full(n, VTK_VERTEX, dtype=np.uint8), None
+        points, owner, conn, sizes, types = [], [], [], [], []
+        npts = 0
+        for i in range(n):
+            mesh = meshes.get(i)
+            if mesh is None:
+                points.append(x[i:i + 1])
+                owner.append(np.array([i]))
+                conn.append(np.array([npts]))
+                sizes.append(np.array([1]))
+                types.append(np.array([VTK_VERTEX]))
+                npts += 1
+                continue
+            verts, faces = mesh
+            faces = np.asarray(faces, dtype=np.int64)
+            points.append(verts)
+            owner.append(np.full(len(verts), i))
+            conn.append(faces.ravel() + npts)
+            sizes.append(np.full(len(faces), faces.shape[1]))
+            types.append(np.full(len(faces), VTK_TRIANGLE if faces.shape[1] == 3 else VTK_POLYGON))
+            npts += len(verts)
+        return (np.concatenate(points).astype(np.float64), np.concatenate(conn).astype(np.int64),
+                np.cumsum(np.concatenate(sizes)).astype(np.int64),
+                np.concatenate(types).astype(np.uint8), np.concatenate(owner).astype(np.int64))
+
+    # ----- writing --------------------------------------------------------------------------------
+    def vtu_text(self, frame):
+        points, conn, offsets, types, owner = self.geometry(frame)
+        arrays = _Arrays(self.binary)
+        point_fields = [f for f in self.fields if f != "position"]
+        active = []
+        if "radius" in point_fields:
+            active.append('Scalars="radius"')
+        if "velocity" in point_fields:
+            active.append('Vectors="velocity"')
+        out = ['<?xml version="1.0"?>\n',
+               '<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" '
+               'header_type="UInt64">\n',
+               '  <UnstructuredGrid>\n',
+               '    <FieldData>\n',
+               arrays.element("TimeValue", np.array([frame.time]), "      ", ntuples=1),
+               arrays.element("step", np.array([frame.step], dtype=np.int64), "      ", ntuples=1),
+               arrays.element("box_lo", frame.lo.reshape(1, 3), "      ", ntuples=1),
+               arrays.element("box_hi", frame.hi.reshape(1, 3), "      ", ntuples=1),
+               '    </FieldData>\n',
+               f'    <Piece NumberOfPoints="{len(points)}" NumberOfCells="{len(types)}">\n',
+               f'      <PointData{"".join(" " + a for a in active)}>\n']
+        for field in point_fields:
+            data = frame.arrays[field]
+            out.append(arrays.element(field, data if owner is None else data[owner], "        "))
+        out += ['      </PointData>\n',
+                '      <Points>\n',
+                arrays.element("Points", points, "        "),
+                '      </Points>\n',
+                '      <Cells>\n',
+                arrays.element("connectivity", conn, "        "),
+                arrays.element("offsets", offsets, "        "),
+                arrays.element("types", types, "        "),
+                '      </Cells>\n',
+                '    </Piece>\n',
+                '  </UnstructuredGrid>\n',
+                arrays.appended(),
+                '</VTKFile>\n']
+        return "".join(out)
+
+    def pvd_text(self):
+        folder = os.path.dirname(os.path.abspath(self.pvd_path))
+        lines = ['<?xml version="1.0"?>\n',
+                 '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n',
+                 '  <Collection>\n']
+        for step, (time, path) in sorted(self._collection.items()):
+            rel = os.path.relpath(os.path.abspath(path), folder).replace(os.sep, "/")
+            lines.append(f'    <DataSet timestep="{time!r}" group="" part="0" file={quoteattr(rel)}/>\n')
+        lines += ['  </Collection>\n', '</VTKFile>\n']
+        return "".join(lines)
+
+    def write_frame(self, frame):
+        path = self.frame_path(frame.step)
+        atomic_write(path, self.vtu_text(frame))
+        if self.pvd_path is not None:
+            self._collection[frame.step] = (frame.time, path)
+            atomic_write(self.pvd_path, self.pvd_text())
