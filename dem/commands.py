@@ -303,9 +303,12 @@ class PairStyle(Command):
         a = self.args(words)
         a.need(1)
         cls = self.sim.registry.get("pair", a[0])
-        self.sim.neighbor.histories = []     # the new style declares its own
+        nb = self.sim.neighbor
+        if self.sim.pair is not None:        # a replaced style takes its contact history with it
+            for h in nb.histories:
+                h.discard()
+        nb.histories = []                    # the new style declares its own
         self.sim.pair = cls(self.sim, a.words[1:])
-        self.sim.neighbor.invalidate()
 
 
 class PairCoeff(Command):

@@ -42,3 +42,9 @@ class History:
         _history.unpack(nb.offsets, nb.neigh, atom.data["tag"], self.values, atom.nlocal,
                         atom.data[f"{self.name}_n"], atom.data[f"{self.name}_tag"],
                         atom.data[f"{self.name}_val"])
+
+    def discard(self):
+        """Forget every stored value (the pair style that owned this history was replaced)."""
+        for suffix in ("_n", "_tag", "_val"):
+            self.sim.atom.remove_field(self.name + suffix)
+        self.values = np.zeros((0, self.nvalues))

@@ -11,9 +11,10 @@ def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, 
                 const double[:, :, ::1] coeff, double[:, ::1] xi, bint use_history, double dt, bint advance,
                 double[::1] stats):
     """Walls w: the plane axis[w] = position[w], particles on the side where side[w] * (x - position) > 0.
-    xi holds 3 history values per wall per particle. stats: [contacts, max overlap / diameter]."""
+    xi holds 3 history values per wall per particle. stats: [contacts, max overlap / diameter, elastic
+    energy]."""
     cdef int i, w, d, a, nw = axis.shape[0], ncont = 0
-    cdef double gap, delta, ci, ov, maxov = 0.0
+    cdef double gap, delta, ci, ov, maxov = 0.0, energy = 0.0
     cdef double n[3]
     cdef double vr[3]
     cdef double fn[3]
@@ -49,7 +50,7 @@ def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, 
                 vr[1] = v[i, 1] - ci * (omega[i, 2] * n[0] - omega[i, 0] * n[2])
                 vr[2] = v[i, 2] - ci * (omega[i, 0] * n[1] - omega[i, 1] * n[0])
                 h = &xi[i, 3 * w] if use_history else NULL
-                hooke(&coeff[w, type_[i], 0], delta, n, vr, rmass[i], h, dt, advance, fn, ft)
+                energy += hooke(&coeff[w, type_[i], 0], delta, n, vr, rmass[i], h, dt, advance, fn, ft)
                 for d in range(3):
                     f[i, d] += fn[d] + ft[d]
                 torque[i, 0] -= ci * (n[1] * ft[2] - n[2] * ft[1])
@@ -57,6 +58,7 @@ def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, 
                 torque[i, 2] -= ci * (n[0] * ft[1] - n[1] * ft[0])
     stats[0] = ncont
     stats[1] = maxov
+    stats[2] = energy
 
 
 def gravity(double[:, ::1] f, const double[::1] rmass, const int[::1] mask, int groupbit, int nlocal,

@@ -50,9 +50,10 @@ class FixWallPlane(Fix):
         self.law = dem_contact.parse(args[i:], f"fix {fid} wall/plane", required=()) if i < len(args) else {}
         if self.law and not {"kn", "en"} <= set(self.law):
             raise DemError(f"fix {fid} wall/plane: give both kn and en (or neither, to use pair_coeff I I)")
-        self.stats = np.zeros(2)
+        self.stats = np.zeros(3)
         self.ncontacts = 0
         self.max_overlap = 0.0
+        self.energy = 0.0          # elastic energy stored in wall contacts (thermo pe, etotal)
 
     def init(self):
         sim = self.sim
@@ -86,6 +87,7 @@ class FixWallPlane(Fix):
                            advance, self.stats)
         self.ncontacts = int(self.stats[0])
         self.max_overlap = float(self.stats[1])
+        self.energy = float(self.stats[2])
 
     def min_contact_time(self):
         atom = self.sim.atom
