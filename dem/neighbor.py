@@ -52,10 +52,11 @@ class Neighbor:
             return True
         atom = self.sim.atom
         d2 = _neighbor.max_displacement_sq(atom.data["x"], self.xhold, atom.nlocal) if atom.nlocal else 0.0
-        if not np.isfinite(d2):
+        d2 = self.sim.comm.max(d2 if np.isfinite(d2) else np.inf)     # one reduction: rebuild or NaN
+        if d2 == np.inf:
             self.report_nonfinite()
         half = 0.5 * self.skin
-        return self.sim.comm.any(d2 > half * half)
+        return d2 > half * half
 
     def rebuild(self, step, wrap=True):
         """The full rebuild sequence of a step; `wrap=False` rebuilds from the positions of the last
@@ -105,7 +106,7 @@ class Neighbor:
         atom = self.sim.atom
         n = atom.nlocal
         bad = ~np.all(np.isfinite(atom.data["x"][:n]) & np.isfinite(atom.data["v"][:n]), axis=1)
-        tags = atom.data["tag"][:n][bad][:5].tolist()
+        tags = sorted(t for part in self.sim.comm.allgather(atom.data["tag"][:n][bad][:5].tolist()) for t in part)[:5]
         self.sim.update.nan_error(f" (particle ids {', '.join(map(str, tags))})")
 
     def pairs(self):
