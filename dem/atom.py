@@ -152,6 +152,14 @@ class Atom:
         self.nlocal = len(idx)
         self.nghost = 0
 
+    def permute(self, order):
+        """Reorder the owned particles (order: a permutation of range(nlocal)); drops ghosts."""
+        n = self.nlocal
+        for name in self.fields:
+            arr = self.data[name]
+            arr[:n] = arr[:n][order]
+        self.nghost = 0
+
     def pack(self, idx):
         """Copies of every field for owned particles idx (for migration and restarts)."""
         return {name: self.data[name][idx].copy() for name in self.fields}

@@ -121,9 +121,24 @@ class Ignored(Command):
         pass
 
 
-class AtomModify(Ignored):
-    """atom_modify map array: accepted for LAMMPS compatibility (dem always maps ids)."""
+class AtomModify(Command):
+    """atom_modify [sort N BINSIZE] [map array|hash|yes]
+
+    `sort N BINSIZE`: every N steps (on a neighbor-list rebuild) order particles by spatial bin so that
+    neighbors are close in memory (default N = 1000, BINSIZE 0 = half the largest pair cutoff; N = 0
+    turns sorting off). `map` is accepted for LAMMPS compatibility (ids are always mapped)."""
     style = "atom_modify"
+    usage = "[sort N binsize] [map array]"
+
+    def __call__(self, words):
+        a = self.args(words)
+        kw = a.keywords(0, {"sort": 2, "map": 1, "id": 1, "first": 1})
+        if "sort" in kw:
+            nb = self.sim.neighbor
+            nb.sort_every = max(0, a.to_int(kw["sort"][0], "sort N"))
+            nb.sort_binsize = a.to_float(kw["sort"][1], "sort binsize")
+            if nb.sort_binsize < 0:
+                raise a.error("sort binsize must be >= 0")
 
 
 class CommModify(Ignored):

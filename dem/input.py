@@ -140,7 +140,7 @@ class Input:
     def __init__(self, sim):
         self.sim = sim
         self.variables = Variables(getattr(sim, "thermo_keyword", None))
-        self.echo = "none"
+        self.echo = "log"      # LAMMPS default: commands go to the log file
         self.quit_status = None   # set by `quit`
         self._stack = []          # _Source being read, innermost last
         self._skip_jump = False   # set when `next` exhausts a variable: the next jump is skipped

@@ -8,6 +8,15 @@ from . import _neighbor
 from .errors import DemError
 
 
+def _morton(v):
+    """Spread the 21 low bits of v three apart (Z-order curve: close cells stay close in memory)."""
+    v = v & np.uint64(0x1FFFFF)
+    for shift, mask in ((32, 0x1F00000000FFFF), (16, 0x1F0000FF0000FF), (8, 0x100F00F00F00F00F),
+                        (4, 0x10C30C30C30C30C3), (2, 0x1249249249249249)):
+        v = (v | (v << np.uint64(shift))) & np.uint64(mask)
+    return v
+
+
 class Neighbor:
     def __init__(self, sim):
         self.sim = sim
@@ -25,6 +34,9 @@ class Neighbor:
         self.ndanger = 0
         self.histories = []
         self.force_rebuild = False
+        self.sort_every = 1000     # spatial sort of particles (memory locality), on rebuild steps
+        self.sort_binsize = 0.0    # 0: half the largest pair cutoff
+        self.last_sort = -10 ** 9
 
     # ----- settings ------------------------------------------------------------------------------
     def cutmax(self):
@@ -70,6 +82,8 @@ class Neighbor:
             sim.modify.pre_exchange()
             sim.domain.pbc()
             sim.comm.exchange()
+            if self.sort_every and step - self.last_sort >= self.sort_every:
+                self.sort(step)
             sim.comm.borders()
             sim.modify.pre_neighbor()
             self.build()
@@ -88,6 +102,24 @@ class Neighbor:
         for h in self.histories:
             h.unpack()
         sim.modify.post_neighbor()
+
+    def sort(self, step):
+        """Order owned particles by spatial bin so that neighbors are close in memory. Done on rebuild
+        steps only, at the same steps in a continued run (the step of the last sort is restarted)."""
+        atom = self.sim.atom
+        n = atom.nlocal
+        self.last_sort = step
+        if n < 2:
+            return
+        x = atom.data["x"][:n]
+        size = self.sort_binsize or 0.5 * self.cutmax()
+        if not size > 0:
+            return
+        lo = x.min(axis=0)
+        cells = np.minimum(np.floor((x - lo) / size).astype(np.uint64), 2 ** 21 - 1)
+        key = _morton(cells[:, 0]) | (_morton(cells[:, 1]) << np.uint64(1)) | (_morton(cells[:, 2]) << np.uint64(2))
+        order = np.argsort(key, kind="stable")
+        atom.permute(order)
 
     def build(self):
         atom = self.sim.atom

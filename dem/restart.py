@@ -31,6 +31,7 @@ def write_restart(sim, path):
         "fields": fields,
         "field_specs": {k: (v[0], v[1].str, v[2], v[3]) for k, v in atom.fields.items()},
         "neighbor": {"xhold": nb.xhold.copy() if nb.hold_valid else None, "last_build": nb.last_build,
+                     "last_sort": nb.last_sort, "sort_every": nb.sort_every,
                      "skin": nb.skin, "every": nb.every, "delay": nb.delay, "check": nb.check},
         "fixes": {f.id: f.state() for f in sim.modify.fixes},
         "pair": sim.pair.state() if sim.pair is not None else {},
@@ -90,6 +91,7 @@ def read_restart(sim, path):
         nb.xhold = xhold
         nb.hold_valid = True
         nb.last_build = ninfo["last_build"]
+        nb.last_sort, nb.sort_every = ninfo["last_sort"], ninfo["sort_every"]
     else:
         nb.invalidate()
     sim.modify.restart_states = dict(state["fixes"])

@@ -18,7 +18,7 @@ cdef inline double hooke(const double* c, double delta, const double* n, const d
     cdef double fnmag = kn * delta - 2.0 * c[1] * sqrt(kn * meff) * vn
     cdef double vt[3]
     cdef double dampt = 2.0 * gt * meff
-    cdef double ftmag, cap, scale, xin, old2, new2
+    cdef double ftmag, cap, scale, xin
     cdef int d
     for d in range(3):
         fn[d] = fnmag * n[d]
@@ -30,17 +30,10 @@ cdef inline double hooke(const double* c, double delta, const double* n, const d
         return 0.5 * kn * delta * delta
     if ks > 0.0 and xi != NULL:
         if advance:
-            # keep the spring in the current tangent plane, with its length (the contact rotates)
+            # keep the spring in the current tangent plane (the contact rotates with the bodies)
             xin = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2]
-            old2 = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]
-            if xin != 0.0:
-                for d in range(3):
-                    xi[d] -= xin * n[d]
-                new2 = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]
-                if new2 > 0.0:
-                    scale = sqrt(old2 / new2)
-                    for d in range(3):
-                        xi[d] *= scale
+            for d in range(3):
+                xi[d] -= xin * n[d]
             for d in range(3):
                 xi[d] += vt[d] * dt
         for d in range(3):

@@ -4,6 +4,8 @@ import numpy as np
 from dem.args import Args
 from dem.fix import Fix, Stage
 
+from . import _kernels
+
 
 class FixGravity(Fix):
     """fix ID group gravity MAGNITUDE vector X Y Z
@@ -32,14 +34,5 @@ class FixGravity(Fix):
 
     def post_force(self):
         atom = self.sim.atom
-        n = atom.nlocal
-        f = atom.data["f"][:n]
-        m = atom.data["rmass"][:n]
-        if self.group == "all":
-            f += m[:, None] * self.g
-        else:
-            sel = (atom.data["mask"][:n] & self.groupbit) != 0
-            f[sel] += m[sel, None] * self.g
-
-    def thermo(self):
-        return {}
+        a = atom.data
+        _kernels.gravity(a["f"], a["rmass"], a["mask"], int(self.groupbit), atom.nlocal, *self.g)

@@ -5,7 +5,7 @@ import dem_contact
 from dem.errors import DemError
 from dem.fix import Fix, Stage
 
-from . import _walls
+from . import _kernels
 
 
 class FixWallPlane(Fix):
@@ -80,7 +80,7 @@ class FixWallPlane(Fix):
         sim = self.sim
         a = sim.atom.data
         xi = a[f"fix_{self.id}_xi"] if self.use_history else np.zeros((1, 3))
-        _walls.plane_walls(a["x"], a["v"], a["omega"], a["f"], a["torque"], a["radius"], a["rmass"],
+        _kernels.plane_walls(a["x"], a["v"], a["omega"], a["f"], a["torque"], a["radius"], a["rmass"],
                            a["type"], a["mask"], int(self.groupbit), sim.atom.nlocal, self.axis,
                            self.position, self.side, self.table, xi, self.use_history, sim.update.dt,
                            advance, self.stats)

@@ -36,7 +36,8 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                 r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]
                 rsum = radius[i] + radius[j]
                 if r2 >= rsum * rsum:
-                    if use_history and advance:
+                    # a contact that ended forgets its history (written only when set: saves bandwidth)
+                    if use_history and advance and (xi[k, 0] != 0.0 or xi[k, 1] != 0.0 or xi[k, 2] != 0.0):
                         xi[k, 0] = 0.0
                         xi[k, 1] = 0.0
                         xi[k, 2] = 0.0

@@ -1,5 +1,5 @@
 # cython: language_level=3
-"""Particle-wall contacts for planar walls, with the shared Grains3D law (m_ij = m_i against a wall)."""
+"""Kernels of the fixes: planar walls (shared Grains3D law, m_ij = m_i against a wall) and gravity."""
 from libc.math cimport sqrt
 from dem_contact.law cimport hooke
 
@@ -27,7 +27,9 @@ def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, 
                 a = axis[w]
                 gap = side[w] * (x[i, a] - position[w])
                 if gap >= radius[i]:
-                    if use_history and advance:
+                    # a contact that ended forgets its history (written only when set: saves bandwidth)
+                    if use_history and advance and (xi[i, 3 * w] != 0.0 or xi[i, 3 * w + 1] != 0.0
+                                                    or xi[i, 3 * w + 2] != 0.0):
                         xi[i, 3 * w] = 0.0
                         xi[i, 3 * w + 1] = 0.0
                         xi[i, 3 * w + 2] = 0.0
@@ -55,3 +57,15 @@ def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, 
                 torque[i, 2] -= ci * (n[0] * ft[1] - n[1] * ft[0])
     stats[0] = ncont
     stats[1] = maxov
+
+
+def gravity(double[:, ::1] f, const double[::1] rmass, const int[::1] mask, int groupbit, int nlocal,
+            double gx, double gy, double gz):
+    """f += m g for the particles of the group."""
+    cdef int i
+    with nogil:
+        for i in range(nlocal):
+            if mask[i] & groupbit:
+                f[i, 0] += rmass[i] * gx
+                f[i, 1] += rmass[i] * gy
+                f[i, 2] += rmass[i] * gz
