@@ -154,14 +154,19 @@ class CommMPI(Comm):
                            "or read_restart)")
         self.user_grid = tuple(grid)
 
-    def setup_grid(self):
+    def setup_grid(self, x=None):
         """Choose the grid (once, when particles are first placed): the factorisation of the rank count
-        allowed by `processors` with the least total sub-box surface."""
+        allowed by `processors` with the least total sub-box surface, for the extent of the particles
+        being placed (x) when given, else of the box: a bed filling the lower half of a tall box is cut
+        along its width, not its height."""
         if self.procgrid is not None:
             return
         dom = self.sim.domain
         dom.require_box("a parallel run")
-        prd, P = dom.prd, self.nprocs
+        prd, P = dom.prd.copy(), self.nprocs
+        if x is not None and len(x):
+            x = np.clip(np.asarray(x, dtype=float).reshape(-1, 3), dom.lo, dom.hi)
+            prd = np.maximum(np.ptp(x, axis=0), 0.05 * prd)
         best, best_area = None, None
         for px in divisors(P):
             for py in divisors(P // px):
@@ -218,8 +223,8 @@ class CommMPI(Comm):
         return rank
 
     def owned_mask(self, x):
-        self.setup_grid()
         x = np.asarray(x, dtype=float).reshape(-1, 3)
+        self.setup_grid(x)
         return self.rank_of(x) == self.me
 
     def subbox(self):
@@ -468,13 +473,13 @@ class CommMPI(Comm):
     def scatter_restart(self, state):
         """This rank's share of a restart read by every rank: owners by the positions of the last
         neighbor build (where the run that wrote it had them), so the run continues as it was."""
-        self.setup_grid()
-        info = state.get("comm")
-        if info and tuple(info["procgrid"]) == tuple(self.procgrid):
-            self.split = [np.array(s, dtype=float) for s in info["split"]]
         fields = state["fields"]
         xhold = state["neighbor"]["xhold"]
         where = xhold if xhold is not None and len(xhold) == len(fields["x"]) else fields["x"]
+        self.setup_grid(where)
+        info = state.get("comm")
+        if info and tuple(info["procgrid"]) == tuple(self.procgrid):
+            self.split = [np.array(s, dtype=float) for s in info["split"]]
         mine = self.owned_mask(where) if len(where) else np.zeros(0, bool)
         return ({name: values[mine] for name, values in fields.items()},
                 xhold[mine] if xhold is not None and len(xhold) == len(mine) else None)

@@ -109,12 +109,10 @@ class Neighbor:
         atom = self.sim.atom
         n = atom.nlocal
         self.last_sort = step
-        if n < 2:
+        size = self.sort_binsize or 0.5 * self.cutmax()     # collective: before any early return
+        if n < 2 or not size > 0:
             return
         x = atom.data["x"][:n]
-        size = self.sort_binsize or 0.5 * self.cutmax()
-        if not size > 0:
-            return
         lo = x.min(axis=0)
         cells = np.minimum(np.floor((x - lo) / size).astype(np.uint64), 2 ** 21 - 1)
         key = _morton(cells[:, 0]) | (_morton(cells[:, 1]) << np.uint64(1)) | (_morton(cells[:, 2]) << np.uint64(2))
