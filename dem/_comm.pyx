@@ -1,53 +1,31 @@
 # cython: language_level=3
-"""Packing kernels of the per-step ghost communication: rows of a (n, k) float array to and from columns
-of a message buffer, so that forward and reverse communication cost one call per field and swap."""
+"""Ghost refresh (forward) and ghost force return (reverse) for ghosts that are periodic images of owned
+particles of this process."""
 cimport numpy as cnp
 
 ctypedef cnp.int64_t i64
 
 
-def pack(const double[:, ::1] src, const i64[::1] idx, double[:, ::1] buf, int col):
-    """buf[m, col:col+k] = src[idx[m]]"""
-    cdef Py_ssize_t m, c, k = src.shape[1]
+def forward(double[:, ::1] x, double[:, ::1] v, double[:, ::1] omega, double[:, ::1] quat,
+            const i64[::1] owner, const double[:, ::1] shift, int nlocal):
+    cdef int g, i, d, n = owner.shape[0]
     with nogil:
-        for m in range(idx.shape[0]):
-            for c in range(k):
-                buf[m, col + c] = src[idx[m], c]
+        for g in range(n):
+            i = owner[g]
+            for d in range(3):
+                x[nlocal + g, d] = x[i, d] + shift[g, d]
+                v[nlocal + g, d] = v[i, d]
+                omega[nlocal + g, d] = omega[i, d]
+            for d in range(4):
+                quat[nlocal + g, d] = quat[i, d]
 
 
-def pack_shift(const double[:, ::1] src, const i64[::1] idx, double[:, ::1] buf, int col,
-               double sx, double sy, double sz):
-    """buf[m, col:col+3] = src[idx[m]] + shift (positions of periodic images)"""
-    cdef Py_ssize_t m
+def reverse(double[:, ::1] f, double[:, ::1] torque, const i64[::1] owner, int nlocal):
+    """Adds ghost rows to their owners in ghost order (deterministic sums)."""
+    cdef int g, i, d, n = owner.shape[0]
     with nogil:
-        for m in range(idx.shape[0]):
-            buf[m, col] = src[idx[m], 0] + sx
-            buf[m, col + 1] = src[idx[m], 1] + sy
-            buf[m, col + 2] = src[idx[m], 2] + sz
-
-
-def unpack(const double[:, ::1] buf, int col, double[:, ::1] dst, Py_ssize_t first, Py_ssize_t n):
-    """dst[first + m] = buf[m, col:col+k]"""
-    cdef Py_ssize_t m, c, k = dst.shape[1]
-    with nogil:
-        for m in range(n):
-            for c in range(k):
-                dst[first + m, c] = buf[m, col + c]
-
-
-def pack_range(const double[:, ::1] src, Py_ssize_t first, Py_ssize_t n, double[:, ::1] buf, int col):
-    """buf[m, col:col+k] = src[first + m]"""
-    cdef Py_ssize_t m, c, k = src.shape[1]
-    with nogil:
-        for m in range(n):
-            for c in range(k):
-                buf[m, col + c] = src[first + m, c]
-
-
-def add(const double[:, ::1] buf, int col, double[:, ::1] dst, const i64[::1] idx):
-    """dst[idx[m]] += buf[m, col:col+k], in message order (deterministic)"""
-    cdef Py_ssize_t m, c, k = dst.shape[1]
-    with nogil:
-        for m in range(idx.shape[0]):
-            for c in range(k):
-                dst[idx[m], c] += buf[m, col + c]
+        for g in range(n):
+            i = owner[g]
+            for d in range(3):
+                f[i, d] += f[nlocal + g, d]
+                torque[i, d] += torque[nlocal + g, d]

@@ -1,5 +1,8 @@
 """The `dem` command: dem -in FILE [-var NAME VALUE ...] [-log FILE] [-screen none]"""
 import sys
+import time
+
+from . import __version__
 
 from .errors import DemError
 
@@ -57,13 +60,18 @@ def main(argv=None):
     sim = None
     try:
         sim = Sim(screen=opts["screen"], log=opts["log"], variables=opts["var"])
-        sim.print("dem 0.1.0 (Discrete Element Method, LAMMPS-style input)")
+        sim.print(f"dem {__version__} (Discrete Element Method), started {time.strftime('%Y-%m-%d %H:%M:%S')}")
+        sim.print(f"  command line: dem {' '.join(argv)}")
+        sim.print(f"  {sim.comm.nprocs} process(es), input {opts['in']}, log {opts['log'] or 'none'}")
         if opts["echo"]:
             sim.input.one(f"echo {opts['echo']}")
         sim.file(opts["in"])
         return 0
     except DemError as e:
         return fatal(sim, e)
+    except BrokenPipeError:          # output piped into a closed reader (e.g. `| head`)
+        sys.stderr.close()
+        return 1
     except KeyboardInterrupt:
         print("ERROR: interrupted", file=sys.stderr)
         return 130

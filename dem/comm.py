@@ -13,7 +13,7 @@ import os
 
 import numpy as np
 
-from .atom import FORWARD_FIELDS
+from . import _comm
 from .errors import DemError
 
 
@@ -144,8 +144,8 @@ class Comm:
                 s[:, d] += sign * length
                 owner.append(own[sel])
                 shift.append(s)
-        self.ghost_owner = np.concatenate(owner[1:]) if len(owner) > 1 else np.zeros(0, dtype=np.int64)
-        self.ghost_shift = np.concatenate(shift[1:]) if len(shift) > 1 else np.zeros((0, 3))
+        self.ghost_owner = np.ascontiguousarray(np.concatenate(owner[1:]) if len(owner) > 1 else np.zeros(0), dtype=np.int64)
+        self.ghost_shift = np.ascontiguousarray(np.concatenate(shift[1:]) if len(shift) > 1 else np.zeros((0, 3)))
         n = len(self.ghost_owner)
         atom.grow(nlocal + n)
         g = slice(nlocal, nlocal + n)
@@ -154,21 +154,17 @@ class Comm:
         atom.data["x"][g] += self.ghost_shift
         atom.nghost = n
 
-    def forward(self, fields=FORWARD_FIELDS):
-        """Refresh ghost copies of the per-step fields from their owners."""
+    def forward(self):
+        """Refresh ghost copies of x, v, omega and quat from their owners."""
         atom = self.sim.atom
         if atom.nghost == 0:
             return
-        g = slice(atom.nlocal, atom.nlocal + atom.nghost)
-        for name in fields:
-            atom.data[name][g] = atom.data[name][self.ghost_owner]
-        atom.data["x"][g] += self.ghost_shift
+        d = atom.data
+        _comm.forward(d["x"], d["v"], d["omega"], d["quat"], self.ghost_owner, self.ghost_shift, atom.nlocal)
 
-    def reverse(self, fields=("f", "torque")):
-        """Add what was accumulated on ghosts to their owners, in ghost order (deterministic)."""
+    def reverse(self):
+        """Add the forces and torques accumulated on ghosts to their owners, in ghost order."""
         atom = self.sim.atom
         if atom.nghost == 0:
             return
-        g = slice(atom.nlocal, atom.nlocal + atom.nghost)
-        for name in fields:
-            np.add.at(atom.data[name], self.ghost_owner, atom.data[name][g])
+        _comm.reverse(atom.data["f"], atom.data["torque"], self.ghost_owner, atom.nlocal)

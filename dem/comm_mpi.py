@@ -26,7 +26,7 @@ import time
 import numpy as np
 from mpi4py import MPI
 
-from . import _comm
+from . import _comm_mpi as _comm
 from .atom import FORWARD_FIELDS
 from .comm import Comm
 from .errors import DemError
