@@ -1,4 +1,5 @@
 """The core's own styles, announced through the same entry-point group (`dem`) as every plugin."""
+from .balance import BALANCE_STYLES
 from .commands import COMMANDS
 from .create_atoms import CreateAtoms, SetCommand
 from .hookspecs import hookimpl
@@ -10,7 +11,7 @@ from .restart import RESTART_COMMANDS
 
 @hookimpl
 def dem_styles():
-    styles = COMMANDS + [CreateAtoms, SetCommand, ReadData] + RESTART_COMMANDS + REGIONS + INTEGRATORS
+    styles = COMMANDS + [CreateAtoms, SetCommand, ReadData] + RESTART_COMMANDS + REGIONS + INTEGRATORS + BALANCE_STYLES
     try:
         from .dump_h5 import DumpH5
         from .dump_vtk import DumpVTK

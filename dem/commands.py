@@ -151,9 +151,23 @@ class Newton(Ignored):
     style = "newton"
 
 
-class Processors(Ignored):
-    """processors Px Py Pz: processor grid (used by MPI runs; ignored in serial runs)."""
+class Processors(Command):
+    """processors Px Py Pz
+
+    The grid of sub-boxes of an MPI run (Px x Py x Pz = number of ranks); `*` lets dem choose that
+    factor (the grid with the least sub-box surface for the box shape). Example: `processors * * 1` for
+    a bed under gravity along z. Must come before particles are created; serial runs only check it."""
     style = "processors"
+    usage = "Px Py Pz"
+
+    def __call__(self, words):
+        a = self.args(words)
+        a.need(3)
+        grid = tuple(0 if w == "*" else a.int(k, f"P{'xyz'[k]}", positive=True) for k, w in
+                     enumerate(a.words[:3]))
+        if len(a) > 3:
+            raise a.error(f"processors takes three values (Px Py Pz), got extra '{a[3]}'")
+        self.sim.comm.set_processors(grid)
 
 
 class Timestep(Command):

@@ -121,15 +121,27 @@ class CreateAtoms(Command):
             raise a.error(f"{int(outside.sum())} particle(s) would lie outside the box")
         v = np.array([a.to_float(w, "v") for w in kw["v"]]) if "v" in kw else None
         omega = np.array([a.to_float(w, "omega") for w in kw["omega"]]) if "omega" in kw else None
-        sim.atom.add(x, radius, sphere_mass(radius, density), type_, v=v, omega=omega)
-        sim.atom.natoms += len(x)
+        # every rank made the same particles (ids in creation order); each keeps those in its sub-box
+        atom = sim.atom
+        tags = np.arange(atom.max_tag + 1, atom.max_tag + 1 + len(x), dtype=np.int64)
+        radius = np.broadcast_to(radius, (len(x),))
+        mine = sim.comm.owned_mask(x)
+        atom.add(x[mine], radius[mine], sphere_mass(radius[mine], density), type_, v=v, omega=omega,
+                 tags=tags[mine])
+        atom.max_tag = max(atom.max_tag, int(tags[-1]) if len(tags) else 0)
+        atom.natoms += len(x)
         sim.neighbor.invalidate()
         sim.print(f"Created {len(x)} particles")
 
     def existing(self):
+        """Positions and radii of every particle already present (all ranks), ordered by id."""
         atom = self.sim.atom
         n = atom.nlocal
-        return atom.data["x"][:n].copy(), atom.data["radius"][:n].copy()
+        comm = self.sim.comm
+        tags, x = comm.allgather_rows(atom.data["tag"][:n], atom.data["x"][:n])
+        _, r = comm.allgather_rows(atom.data["tag"][:n], atom.data["radius"][:n])
+        order = np.argsort(tags, kind="stable")
+        return x[order], r[order]
 
     def random_fill(self, region, radius, rng, attempts):
         """Random sequential addition: each sphere (largest first) is tried at fresh random points until

@@ -74,7 +74,7 @@ class Domain:
                 out |= (x[:, d] < self.lo[d]) | (x[:, d] > self.hi[d])
         nout = int(self.sim.comm.sum(int(out.sum())))
         if nout:
-            tags = atom.data["tag"][:n][out]
+            tags = np.concatenate(self.sim.comm.allgather(atom.data["tag"][:n][out]))
             if self.lost_policy == "error":
                 bad = ", ".join(str(t) for t in tags[:5])
                 raise DemError(f"{nout} particle(s) left the box through a fixed boundary at step "
@@ -91,20 +91,22 @@ class Domain:
     def shrink_wrap(self):
         """Open (s, m) boundaries follow the particles; m never shrinks below the initial bound."""
         atom = self.sim.atom
-        if atom.nlocal == 0:
-            return
-        x = atom.data["x"][:atom.nlocal]
-        r = atom.data["radius"][:atom.nlocal]
+        n = atom.nlocal
+        x = atom.data["x"][:n]
+        r = atom.data["radius"][:n]
         for d in range(3):
             for side, style in enumerate(self.boundary[d]):
                 if style not in "sm":
                     continue
+                # every rank takes part in the reduction, with or without particles
                 if side == 0:
-                    lo = self.sim.comm.min(float(np.min(x[:, d] - r)))
-                    self.lo[d] = lo if style == "s" else min(lo, self.lo[d])
+                    lo = self.sim.comm.min(float(np.min(x[:, d] - r)) if n else np.inf)
+                    if np.isfinite(lo):
+                        self.lo[d] = lo if style == "s" else min(lo, self.lo[d])
                 else:
-                    hi = self.sim.comm.max(float(np.max(x[:, d] + r)))
-                    self.hi[d] = hi if style == "s" else max(hi, self.hi[d])
+                    hi = self.sim.comm.max(float(np.max(x[:, d] + r)) if n else -np.inf)
+                    if np.isfinite(hi):
+                        self.hi[d] = hi if style == "s" else max(hi, self.hi[d])
 
     def unwrap(self, x, image):
         return x + image * self.prd

@@ -64,10 +64,11 @@ class Neighbor:
             return True
         atom = self.sim.atom
         d2 = _neighbor.max_displacement_sq(atom.data["x"], self.xhold, atom.nlocal) if atom.nlocal else 0.0
-        if not np.isfinite(d2):
+        d2 = self.sim.comm.max(d2 if np.isfinite(d2) else np.inf)     # one reduction: rebuild or NaN
+        if d2 == np.inf:
             self.report_nonfinite()
         half = 0.5 * self.skin
-        return self.sim.comm.any(d2 > half * half)
+        return d2 > half * half
 
     def rebuild(self, step, wrap=True):
         """The full rebuild sequence of a step; `wrap=False` rebuilds from the positions of the last
@@ -108,12 +109,10 @@ class Neighbor:
         atom = self.sim.atom
         n = atom.nlocal
         self.last_sort = step
-        if n < 2:
+        size = self.sort_binsize or 0.5 * self.cutmax()     # collective: before any early return
+        if n < 2 or not size > 0:
             return
         x = atom.data["x"][:n]
-        size = self.sort_binsize or 0.5 * self.cutmax()
-        if not size > 0:
-            return
         lo = x.min(axis=0)
         cells = np.minimum(np.floor((x - lo) / size).astype(np.uint64), 2 ** 21 - 1)
         key = _morton(cells[:, 0]) | (_morton(cells[:, 1]) << np.uint64(1)) | (_morton(cells[:, 2]) << np.uint64(2))
@@ -137,7 +136,7 @@ class Neighbor:
         atom = self.sim.atom
         n = atom.nlocal
         bad = ~np.all(np.isfinite(atom.data["x"][:n]) & np.isfinite(atom.data["v"][:n]), axis=1)
-        tags = atom.data["tag"][:n][bad][:5].tolist()
+        tags = sorted(t for part in self.sim.comm.allgather(atom.data["tag"][:n][bad][:5].tolist()) for t in part)[:5]
         self.sim.update.nan_error(f" (particle ids {', '.join(map(str, tags))})")
 
     def pairs(self):

@@ -96,6 +96,8 @@ class Output:
         nb = sim.neighbor
         sim.print(f"Neighbor list builds = {nb.nbuilds}, pairs listed = {sim.comm.sum(nb.nentries)}, "
                   f"skin = {nb.skin:g}")
+        for line in sim.comm.report(nsteps):
+            sim.print(line)
         peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
         sim.print(f"Peak memory: {peak:.1f} MiB per process")
         sim.print(f"Total wall time (setup + loop): {total:.4g} s")

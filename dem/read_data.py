@@ -51,8 +51,10 @@ class ReadData(Command):
         if np.any(radius <= 0):
             raise DemError(f"read_data {path}: diameters must be > 0 (point particles are not supported)")
         rmass = data[:, 3] * 4.0 / 3.0 * np.pi * radius ** 3
-        s = sim.atom.add(data[:, 4:7], radius, rmass, data[:, 1].astype(np.int32), tags=tags,
-                         image=data[:, 7:10].astype(np.int32))
+        types = data[:, 1].astype(np.int64)
+        if np.any(types < 1) or np.any(types > sim.atom.ntypes):
+            raise DemError(f"read_data {path}: particle type out of range 1..{sim.atom.ntypes}")
+        v, omega = np.zeros((len(tags), 3)), np.zeros((len(tags), 3))
         if "Velocities" in sections:
             vel = np.array([[float(w) for w in r[:7]] for r in sections["Velocities"]])
             index = {t: k for k, t in enumerate(tags)}
@@ -60,8 +62,12 @@ class ReadData(Command):
                 k = index.get(int(row[0]))
                 if k is None:
                     raise DemError(f"read_data {path}: velocity for unknown atom id {int(row[0])}")
-                sim.atom.data["v"][s.start + k] = row[1:4]
-                sim.atom.data["omega"][s.start + k] = row[4:7]
+                v[k] = row[1:4]
+                omega[k] = row[4:7]
+        mine = sim.comm.owned_mask(data[:, 4:7])     # every rank reads the file and keeps its sub-box
+        sim.atom.add(data[mine, 4:7], radius[mine], rmass[mine], data[mine, 1].astype(np.int32),
+                     tags=tags[mine], image=data[mine, 7:10].astype(np.int32), v=v[mine], omega=omega[mine])
+        sim.atom.max_tag = max(sim.atom.max_tag, int(tags.max()) if len(tags) else 0)
         sim.atom.natoms += len(tags)
         sim.neighbor.invalidate()
         sim.print(f"Read {len(tags)} particles from {path}")

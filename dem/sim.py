@@ -5,7 +5,7 @@ import sys
 import numpy as np
 
 from .atom import Atom
-from .comm import Comm
+from .comm import make_comm
 from .domain import Domain
 from .errors import DemError
 from .group import Groups
@@ -29,7 +29,7 @@ class Sim:
     def __init__(self, screen=True, log=None, variables=(), registry=None, comm=None):
         from .input import Input   # late: the interpreter imports command machinery
         self.registry = registry or default_registry()
-        self.comm = comm or Comm(self)
+        self.comm = comm or make_comm(self)
         self.screen = screen and self.comm.me == 0
         self.logfile = open(log, "w") if (log and self.comm.me == 0) else None
         self.atom = Atom()
@@ -105,6 +105,8 @@ class Sim:
 def fatal(sim, error):
     """Report a DemError on stderr/log and return the exit status."""
     text = f"ERROR: {error}"
+    if sim is not None and sim.comm.nprocs > 1:
+        return sim.comm.fatal(sim, text)     # one report, and never a hang when one rank failed alone
     if sim is not None:
         sim.print(text, screen=False)
     print(text, file=sys.stderr, flush=True)

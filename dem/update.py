@@ -44,7 +44,7 @@ class Update:
             sim.pair.init()
         sim.neighbor.init()
         atom, nb = sim.atom, sim.neighbor
-        continuing = nb.hold_valid and len(nb.xhold) == atom.nlocal
+        continuing = not sim.comm.any(not (nb.hold_valid and len(nb.xhold) == atom.nlocal))
         nb.rebuild(self.ntimestep, wrap=not continuing)
         sim.modify.setup()
         self.check_timestep()
@@ -148,7 +148,8 @@ class Update:
         worst = self.sim.comm.max(pair.max_overlap)
         if worst > self.max_overlap_fraction:
             self.sim.output.emergency()
-            tags = getattr(pair, "max_overlap_tags", None)
+            mine = (pair.max_overlap, getattr(pair, "max_overlap_tags", None))
+            tags = max(self.sim.comm.allgather(mine), key=lambda p: (p[1] is not None, p[0]))[1]
             ids = f" between particles {tags[0]} and {tags[1]}" if tags else ""
             tc = getattr(self, "min_contact_time", None)
             hint = (f"time step {self.dt:g} vs T_c = {tc:g} ({tc / self.dt:.1f} steps per contact)"

@@ -92,16 +92,15 @@ class FixWallPlane(Fix):
     def min_contact_time(self):
         atom = self.sim.atom
         n = atom.nlocal
-        if n == 0:
-            return None
         types = atom.data["type"][:n]
-        tmin = None
+        tmin = np.inf
         for t in np.unique(types):
             m = float(atom.data["rmass"][:n][types == t].min())
             row = self.table[0, t]
             tc = dem_contact.contact_time(row[dem_contact.KN], row[dem_contact.EN], m)
-            tmin = tc if tmin is None else min(tmin, tc)
-        return self.sim.comm.min(tmin)
+            tmin = min(tmin, tc)
+        tmin = self.sim.comm.min(tmin)     # collective: every rank, with or without particles
+        return tmin if np.isfinite(tmin) else None
 
     def thermo(self):
         return {"contacts": self.sim.comm.sum(self.ncontacts)}

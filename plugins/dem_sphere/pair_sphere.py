@@ -90,14 +90,13 @@ class PairSphere(Pair):
         """Shortest T_c over type pairs, with the lightest particles present."""
         atom = self.sim.atom
         n = atom.nlocal
-        if n == 0:
-            return None
-        tmin = None
+        tmin = np.inf
         types = atom.data["type"][:n]
         masses = {t: float(atom.data["rmass"][:n][types == t].min()) for t in np.unique(types)}
         for ta, ma in masses.items():
             for tb, mb in masses.items():
                 r = self.table[ta, tb]
                 t = dem_contact.contact_time(r[dem_contact.KN], r[dem_contact.EN], ma * mb / (ma + mb))
-                tmin = t if tmin is None else min(tmin, t)
-        return self.sim.comm.min(tmin)
+                tmin = min(tmin, t)
+        tmin = self.sim.comm.min(tmin)     # collective: every rank, with or without particles
+        return tmin if np.isfinite(tmin) else None
