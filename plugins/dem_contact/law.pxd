@@ -18,7 +18,7 @@ cdef inline double hooke(const double* c, double delta, const double* n, const d
     cdef double fnmag = kn * delta - 2.0 * c[1] * sqrt(kn * meff) * vn
     cdef double vt[3]
     cdef double dampt = 2.0 * gt * meff
-    cdef double ftmag, cap, scale, xin
+    cdef double ft2, cap, scale, xin
     cdef int d
     for d in range(3):
         fn[d] = fnmag * n[d]
@@ -41,10 +41,10 @@ cdef inline double hooke(const double* c, double delta, const double* n, const d
     else:
         for d in range(3):
             ft[d] = -dampt * vt[d]
-    ftmag = sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2])
+    ft2 = ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]
     cap = mu * (fnmag if fnmag > 0.0 else -fnmag)
-    if ftmag > cap:
-        scale = cap / ftmag if ftmag > 0.0 else 0.0
+    if ft2 > cap * cap:
+        scale = cap / sqrt(ft2)
         for d in range(3):
             ft[d] *= scale
         if ks > 0.0 and xi != NULL and advance:

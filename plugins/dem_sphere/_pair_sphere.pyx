@@ -23,7 +23,7 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
     cdef double ft[3]
     cdef double nxft[3]
     cdef double wr[3]
-    cdef double r2, r, rsum, delta, meff, ci, cj, energy = 0.0, ov, maxov = 0.0, fnmag, wmag, mr
+    cdef double r2, r, rinv, rsum, delta, meff, ci, cj, energy = 0.0, ov, maxov = 0.0, fnmag, wmag, mr
     cdef const double* c
     cdef double* h
     with nogil:
@@ -43,8 +43,9 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                         xi[k, 2] = 0.0
                     continue
                 r = sqrt(r2)
+                rinv = 1.0 / r
                 for d in range(3):
-                    n[d] = dx[d] / r
+                    n[d] = dx[d] * rinv
                 delta = rsum - r
                 ncont += 1
                 ov = delta / (2.0 * (radius[i] if radius[i] < radius[j] else radius[j]))
