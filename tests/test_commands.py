@@ -1,0 +1,92 @@
+"""Set-up commands: particle creation, groups, set, read_data of LAMMPS files, thermo keywords."""
+import math
+import os
+
+import numpy as np
+import pytest
+
+import dem
+
+BOX = """
+units si
+boundary p p f
+region box block 0 0.01 0 0.01 0 0.02
+create_box 2 box
+"""
+SHARED = os.path.join(os.path.dirname(__file__), "..", "..", "shared", "bench", "sphere-bed")
+
+
+def make(script):
+    sim = dem.Simulation(screen=False)
+    sim.commands(script)
+    return sim
+
+
+def test_random_fill_is_reproducible_and_never_overlaps():
+    script = BOX + "create_atoms 1 random 300 77 box radius uniform 0.0003 0.0005 density 2500\n"
+    a, b = make(script), make(script)
+    assert np.array_equal(a.gather("x"), b.gather("x"))
+    x, r = a.gather("x"), a.gather("radius")
+    d = x[:, None, :] - x[None, :, :]
+    d[..., :2] -= 0.01 * np.round(d[..., :2] / 0.01)        # periodic x and y: minimum image
+    dist = np.sqrt((d ** 2).sum(-1)) + np.eye(len(x))
+    assert np.all(dist >= (r[:, None] + r[None, :]) * (1 - 1e-12))
+    assert np.all(x[:, 2] - r >= 0) and np.all(x[:, 2] + r <= 0.02)   # inside the region
+    assert np.all((r >= 0.0003) & (r <= 0.0005))
+    c = make(script.replace(" 77 ", " 78 "))
+    assert not np.array_equal(a.gather("x"), c.gather("x"))
+
+
+def test_lattice_and_single():
+    sim = make(BOX + "create_atoms 1 lattice box sc 0.001 radius 0.0004 density 1000\n"
+                     "create_atoms 2 single 0.005 0.005 0.0195 radius 0.0002 v 1 2 3\n")
+    assert sim.atom.natoms == 10 * 10 * 20 + 1
+    m = sim.gather("rmass")
+    assert m[0] == pytest.approx(1000 * 4 / 3 * math.pi * 0.0004 ** 3, rel=1e-14)
+    assert sim.gather("v")[-1].tolist() == [1, 2, 3]
+    assert sim.gather("type")[-1] == 2
+
+
+def test_groups_and_set():
+    sim = make(BOX + "create_atoms 1 lattice box sc 0.001 radius 0.0004 density 1000\n"
+                     "region top block INF INF INF INF 0.01 INF\n"
+                     "group top region top\n"
+                     "set group top type 2 v 0 0 -1 density 2000\n"
+                     "group heavy type 2\n"
+                     "group rest subtract all heavy\n")
+    assert sim.groups.count("top") == sim.groups.count("heavy") == 1000
+    assert sim.groups.count("rest") == 1000
+    top = sim.groups.members("top")
+    m = sim.atom.local("rmass")
+    assert m[top][0] == pytest.approx(2 * m[~top][0], rel=1e-14)
+    assert np.all(sim.atom.local("v")[top] == [0, 0, -1])
+
+
+def test_read_data_of_the_lammps_bed():
+    sim = make(f"units si\nboundary f f fm\nread_data {SHARED}/bed_8000.data\n")
+    assert sim.atom.natoms == 8000
+    assert sim.domain.lo.tolist() == [0, 0, 0] and sim.domain.hi[:2].tolist() == [0.02, 0.02]
+    assert np.allclose(sim.gather("radius"), 0.0005)
+    assert sorted(sim.gather("tag")) == list(range(1, 8001))
+
+
+def test_thermo_keywords_and_run_zero():
+    sim = make(BOX + "create_atoms 1 lattice box sc 0.001 radius 0.0005 density 1000\n"
+                     "pair_style sphere\npair_coeff * * kn 100 en 0.5\n"
+                     "fix nve all nve/sphere\ntimestep 1e-6\nthermo_style custom step atoms contacts cn\n"
+                     "run 0\n")
+    # touching spheres on a simple cubic lattice: 6 neighbours each (z faces: 5 on the first and last
+    # layer); a touching pair has zero overlap, so count the listed pairs at distance 2r instead
+    assert sim.thermo_keyword("atoms") == 2000
+    assert sim.thermo_keyword("step") == 0
+    assert sim.thermo_keyword("xhi") == 0.01 and sim.thermo_keyword("vol") == pytest.approx(2e-6)
+    with pytest.raises(dem.DemError, match="unknown thermo keyword"):
+        sim.thermo_keyword("nope")
+
+
+def test_nan_stops_the_run_with_the_particle_id():
+    sim = make(BOX + "create_atoms 1 single 0.005 0.005 0.01 radius 0.0005\n"
+                     "create_atoms 1 single 0.002 0.002 0.01 radius 0.0005\n"
+                     "fix nve all nve/sphere\ntimestep 1e-6\nset atom 2 vx nan\n")
+    with pytest.raises(dem.DemError, match=r"non-finite position or velocity at step \d+ \(particle ids 2\)"):
+        sim.run(10)
