@@ -35,11 +35,11 @@ setup(
     package_dir={**{p: os.path.join(PLUGIN_DIR, *p.split(".")) for p in plugin_packages}},
     package_data={"": ["*.pxd", "*.pyx"]},
     ext_modules=extensions,
-    install_requires=["numpy>=1.24", "h5py", "pluggy>=1.0", "scipy"],
+    install_requires=["numpy>=1.24", "h5py", "pluggy>=1.0", "scipy", "matplotlib"],
     extras_require={"mpi": ["mpi4py", "mpich"], "test": ["pytest", "mpi4py", "mpich", "vtk"]},
     entry_points={
         "console_scripts": ["dem = dem.cli:main"],
-        "dem": ["core = dem.builtin", "sphere = dem_sphere", "fixes = dem_fixes"],
+        "dem": ["core = dem.builtin", "sphere = dem_sphere", "fixes = dem_fixes", "process = dem_process"],
     },
     zip_safe=False,
 )

@@ -1,7 +1,10 @@
 """The core's own styles, announced through the same entry-point group (`dem`) as every plugin."""
 from .balance import BALANCE_STYLES
 from .commands import COMMANDS
+from .compute import COMMANDS as COMPUTE_COMMANDS
 from .create_atoms import CreateAtoms, SetCommand
+from .dump_h5 import DumpH5
+from .dump_vtk import DumpVTK
 from .hookspecs import hookimpl
 from .integrate import INTEGRATORS
 from .read_data import ReadData
@@ -11,11 +14,5 @@ from .restart import RESTART_COMMANDS
 
 @hookimpl
 def dem_styles():
-    styles = COMMANDS + [CreateAtoms, SetCommand, ReadData] + RESTART_COMMANDS + REGIONS + INTEGRATORS + BALANCE_STYLES
-    try:
-        from .dump_h5 import DumpH5
-        from .dump_vtk import DumpVTK
-        styles += [DumpH5, DumpVTK]
-    except ImportError:   # pragma: no cover - the dumps are part of the package
-        raise
-    return styles
+    return (COMMANDS + COMPUTE_COMMANDS + [CreateAtoms, SetCommand, ReadData] + RESTART_COMMANDS + REGIONS
+            + INTEGRATORS + BALANCE_STYLES + [DumpH5, DumpVTK])

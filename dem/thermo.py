@@ -54,11 +54,21 @@ class Thermo:
             e += 0.5 * float(np.sum(inertia[shaped] * wb * wb))
         return self.sim.comm.sum(e)
 
+    def _pe(self):
+        """Elastic energy stored in every contact: particle pairs and walls."""
+        sim = self.sim
+        e = sim.pair.energy if sim.pair is not None else 0.0
+        e += sum(getattr(f, "energy", 0.0) for f in sim.modify.fixes)
+        return sim.comm.sum(e)
+
     def keyword(self, name):
         sim = self.sim
         up, dom, atom, pair = sim.update, sim.domain, sim.atom, sim.pair
         if name.startswith("v_"):
             return sim.input.evaluate(f"v_{name[2:]}")
+        if name.startswith("c_"):
+            from .compute import thermo_value
+            return thermo_value(sim, name)
         if name.startswith("f_"):
             values = sim.modify.thermo()
             if name in values:
@@ -71,8 +81,8 @@ class Thermo:
             "atoms": lambda: atom.natoms,
             "ke": lambda: self._ke(),
             "erot": lambda: self._erot(),
-            "pe": lambda: sim.comm.sum(pair.energy) if pair else 0.0,
-            "etotal": lambda: self._ke(True) + self._erot(True) + (sim.comm.sum(pair.energy) if pair else 0.0),
+            "pe": lambda: self._pe(),
+            "etotal": lambda: self._ke(True) + self._erot(True) + self._pe(),
             "contacts": lambda: sim.comm.sum(pair.ncontacts) if pair else 0,
             "cn": lambda: (2.0 * sim.comm.sum(pair.ncontacts) / atom.natoms) if (pair and atom.natoms) else 0.0,
             "maxov": lambda: sim.comm.max(pair.max_overlap) if pair else 0.0,
@@ -94,7 +104,7 @@ class Thermo:
 
     def check_style(self, words):
         for w in words:
-            if w.startswith(("v_", "f_")):
+            if w.startswith(("v_", "f_", "c_")):
                 continue
             if w not in INT_KEYWORDS | set(DEFAULT_STYLE) | {"pe", "etotal", "lost", "nbuild", "xlo", "xhi",
                                                              "ylo", "yhi", "zlo", "zhi", "lx", "ly", "lz",

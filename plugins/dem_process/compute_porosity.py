@@ -1,0 +1,107 @@
+"""compute porosity"""
+import numpy as np
+
+from dem.commands import find_region
+from dem.compute import Compute
+from dem.errors import DemError
+
+from . import _compute_porosity
+
+
+class ComputePorosity(Compute):
+    """compute ID group porosity REGION-ID [resolution K | dx D]
+
+    Porosity (void fraction) of a region by structured-lattice voxelisation, as Grains3D does for
+    packings (Part III sec 4.1): the region's bounding box (clipped to the simulation box) is cut into a
+    regular grid of cubic-ish cells; the centre of a cell is solid when it lies inside a particle of the
+    group (spheres: inside any sphere, periodic images included); porosity = 1 - solid points / points
+    inside the region. Grid spacing: D, or the smallest particle diameter of the group divided by K
+    (default K = 40 points per diameter). Accuracy: on a lattice of spheres commensurate with the grid the
+    error aliases (Gauss-circle counting): 0.14 % at K = 40 on a simple cubic lattice, erratic between
+    0.1 and 0.7 % for K = 36..60, 1-3 % below K = 20; for random packings the errors of the spheres
+    average out (< 0.05 % at K = 20; Part III uses about 27 and 54 points per diameter, Table 5).
+    Regions: block, cylinder or sphere, side in. Vector: [porosity, solid fraction, points in the region,
+    solid volume (points x cell volume)].
+
+    The cost grows as the number of points (K^3 per cubic diameter; about 1e7 points/s on one core):
+    evaluate it once at the end
+    (e.g. `run 0` with it in thermo) rather than at every thermo line. In parallel runs every rank
+    gathers the group's particles and counts a share of the grid layers.
+
+    Example (Part III Table 5): `compute por all porosity bulk` then `thermo_style custom step c_por`."""
+
+    style = "porosity"
+    size_vector = 4
+    vector_names = ("porosity", "solid_fraction", "points", "solid_volume")
+    usage = "REGION-ID [resolution K | dx D]"
+
+    def __init__(self, sim, cid, group, args):
+        super().__init__(sim, cid, group, args)
+        a = self.parser()
+        a.need(1)
+        self.region = find_region(sim, a[0])
+        if self.region.style not in ("block", "cylinder", "sphere"):
+            raise a.error(f"region style {self.region.style} is not supported (block, cylinder, sphere)")
+        if not self.region.side_in:
+            raise a.error("the region must be 'side in'")
+        kw = a.keywords(1, {"resolution": 1, "dx": 1})
+        if "resolution" in kw and "dx" in kw:
+            raise a.error("give resolution or dx, not both")
+        self.resolution = a.to_float(kw["resolution"][0], "resolution") if "resolution" in kw else 40.0
+        self.dx = a.to_float(kw["dx"][0], "dx") if "dx" in kw else None
+        if self.resolution <= 0 or (self.dx is not None and self.dx <= 0):
+            raise a.error("resolution and dx must be > 0")
+
+    def grid(self):
+        """(lower corner, spacing per axis, points per axis) of the grid."""
+        sim = self.sim
+        dom = sim.domain
+        lo, hi = self.region.bbox()
+        lo, hi = np.maximum(lo, dom.lo), np.minimum(hi, dom.hi)
+        if np.any(hi <= lo):
+            raise DemError(f"compute {self.id} porosity: region {self.region.id} lies outside the box")
+        dx = self.dx
+        if dx is None:
+            atom = sim.atom
+            r = atom.data["radius"][:atom.nlocal][self.group_mask()]
+            rmin = sim.comm.min(float(r.min()) if len(r) else np.inf)
+            if not np.isfinite(rmin):
+                raise DemError(f"compute {self.id} porosity: no particle in group {self.group} to set the "
+                               f"grid spacing (give dx)")
+            dx = 2.0 * rmin / self.resolution
+        npts = np.maximum(np.rint((hi - lo) / dx), 1).astype(np.int64)
+        return lo, (hi - lo) / npts, npts
+
+    def _region_params(self):
+        reg = self.region
+        if reg.style == "cylinder":
+            return 1, np.array([reg.axis, reg.c[0], reg.c[1], reg.radius, reg.lo, reg.hi], dtype=float)
+        if reg.style == "sphere":
+            return 2, np.array([*reg.center, reg.radius], dtype=float)
+        return 0, np.zeros(1)
+
+    def compute_vector(self):
+        sim = self.sim
+        atom, dom, comm = sim.atom, sim.domain, sim.comm
+        glo, h, npts = self.grid()
+        kind, params = self._region_params()
+        n = atom.nlocal
+        x, r, mask = atom.data["x"], atom.data["radius"], atom.data["mask"]
+        if comm.nprocs > 1:
+            # every rank sees every particle of the group and counts its share of the grid layers
+            sel = self.group_mask()
+            _, x = comm.allgather_rows(atom.data["tag"][:n][sel], x[:n][sel])
+            _, r = comm.allgather_rows(atom.data["tag"][:n][sel], r[:n][sel])
+            x = np.ascontiguousarray(np.asarray(x, dtype=float).reshape(-1, 3))
+            r = np.ascontiguousarray(r, dtype=float)
+            n = len(r)
+            mask = np.full(n, int(self.groupbit), dtype=np.int32)
+        inside, solid = _compute_porosity.voxel_count(
+            x, r, mask, int(self.groupbit), n, glo, h, npts, dom.lo, dom.prd, dom.periodic.astype(np.int32),
+            kind, params, True, comm.me, comm.nprocs)
+        inside, solid = comm.sum(int(inside)), comm.sum(int(solid))
+        phi = solid / inside if inside else 0.0
+        return np.array([1.0 - phi, phi, float(inside), solid * float(np.prod(h))])
+
+    def compute_scalar(self):
+        return self.vector()[0]

@@ -1,0 +1,202 @@
+"""fix wall/drum"""
+import math
+
+import numpy as np
+
+import dem_contact
+from dem.args import Args
+from dem.errors import DemError
+from dem.fix import Fix, Stage
+
+from . import _fix_wall_drum
+
+RPM = 2.0 * math.pi / 60.0
+
+
+class FixWallDrum(Fix):
+    """fix ID group wall/drum AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate]
+        [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
+
+    A rotating cylindrical wall (a drum) with the particles inside. AXIS is x, y or z; the axis passes
+    through (C1, C2) in the two other coordinates, in x, y, z order (as `region cylinder`); RADIUS is the
+    inner radius of the drum.
+
+    * `rpm W` or `omega W`: rotation rate in revolutions per minute or rad/s (default 0), positive
+      counter-clockwise about +AXIS (right-hand rule).
+    * `ramp T`: the rate grows linearly from 0 to W over the first T seconds after the fix is defined
+      (default 0: full rate at once).
+    * `ends LO HI fixed|rotate`: flat end walls at AXIS = LO (facing +AXIS) and HI (facing -AXIS), at rest
+      or rotating with the drum. Without `ends`, make the box periodic along the axis.
+
+    The wall surface moves with the velocity Omega e_axis x r of the drum at the contact point; it
+    enters the contact's relative velocity, so the tangential (friction) force drags the bed along
+    (with gamma_t = ks = 0 the law has no tangential force at all: give one of them).
+    Contacts use the Grains3D law with m_ij = m_i and the coefficients given here (the same keywords as
+    `pair_coeff`; without them those of each type with itself), a tangential history per particle and
+    wall (when ks > 0) that survives rebuilds, restarts and migration, and the rolling resistance of
+    `pair_style sphere` (mu_roll r_i |F_n| against the spin relative to the wall).
+
+    Redefining the fix (same ID, e.g. `rpm 0` to fill, then `rpm 40` to rotate) keeps the drum angle;
+    the ramp starts again from the redefinition. Global state kept for restarts: the drum angle and the
+    time since the fix was defined (ramp).
+    Thermo values: `f_ID[contacts]`, `f_ID[omega]` (rad/s now), `f_ID[angle]` (rad), `f_ID[revs]`
+    (revolutions), `f_ID[torque]` (torque of the walls on the particles about the axis, N m: the drive
+    torque in steady rotation; power = torque x omega).
+
+    Example (Part III sec 4.2: drum of radius 50 mm, periodic along y; inputs/in.drum)::
+
+        fix drum all wall/drum y 0 0 0.05 rpm 40 ramp 0.02 kn 1e5 en 0.73 mu 0.55 gamma_t 2000 ks 28571
+    """
+
+    style = "wall/drum"
+    stages = Stage.POST_FORCE | Stage.END_OF_STEP
+    usage = ("AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate] "
+             "[kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]")
+
+    def __init__(self, sim, fid, group, args):
+        super().__init__(sim, fid, group, args)
+        a = Args(args, f"fix ID group wall/drum {self.usage}", f"fix {fid} wall/drum")
+        a.need(4)
+        if a[0] not in ("x", "y", "z"):
+            raise a.error(f"AXIS must be x, y or z, got '{a[0]}'")
+        self.axis = "xyz".index(a[0])
+        others = [d for d in range(3) if d != self.axis]
+        self.centre = np.zeros(3)
+        self.centre[others] = a.floats(1, 2, "centre")
+        self.radius = a.float(3, "radius", positive=True)
+        self.omega_target = 0.0
+        self.ramp = 0.0
+        self.ends = None
+        self.ends_rotate = False
+        i, law = 4, []
+        while i < len(a):
+            key = a[i]
+            if key in ("rpm", "omega"):
+                self.omega_target = a.float(i + 1, key) * (RPM if key == "rpm" else 1.0)
+                i += 2
+            elif key == "ramp":
+                self.ramp = a.float(i + 1, "ramp", nonneg=True)
+                i += 2
+            elif key == "ends":
+                lo, hi = a.float(i + 1, "LO"), a.float(i + 2, "HI")
+                if hi <= lo:
+                    raise a.error("ends: HI must exceed LO")
+                if a[i + 3] not in ("fixed", "rotate"):
+                    raise a.error(f"ends: expected fixed or rotate, got '{a[i + 3]}'")
+                self.ends = (lo, hi)
+                self.ends_rotate = a[i + 3] == "rotate"
+                i += 4
+            elif key in dem_contact.KEYWORDS:
+                law += a.words[i:i + 2]
+                i += 2
+            else:
+                from dem.errors import did_you_mean
+                known = ["rpm", "omega", "ramp", "ends"] + list(dem_contact.KEYWORDS)
+                raise a.error(f"unknown keyword '{key}'{did_you_mean(key, known)}")
+        self.law = dem_contact.parse(law, f"fix {fid} wall/drum", required=()) if law else {}
+        if self.law and not {"kn", "en"} <= set(self.law):
+            raise DemError(f"fix {fid} wall/drum: give both kn and en (or neither, to use pair_coeff I I)")
+        self.nwalls = 1 + (2 if self.ends else 0)
+        self.angle = 0.0          # drum angle (rad), integrated exactly for the linear ramp
+        self.elapsed = 0.0        # time since the fix was defined (s)
+        old = sim.modify.find(fid)
+        if old is not None and getattr(old, "style", None) == self.style:
+            self.angle = old.angle   # redefined (e.g. to start rotating): the drum keeps its angle
+        self.stats = np.zeros(4)
+        self.energy = 0.0          # elastic energy stored in the wall contacts (thermo pe, etotal)
+        self.ncontacts = 0
+        self.max_overlap = 0.0
+        self.torque = 0.0
+
+    # ----- rotation -------------------------------------------------------------------------------
+    def omega_at(self, t):
+        if self.ramp > 0.0 and t < self.ramp:
+            return self.omega_target * t / self.ramp
+        return self.omega_target
+
+    @property
+    def omega(self):
+        """Rotation rate (rad/s) at the current time."""
+        return self.omega_at(self.elapsed)
+
+    def wall_velocity(self, x):
+        """Velocity (n, 3) of the drum, as a rigid body, at points x (n, 3)."""
+        e = np.zeros(3)
+        e[self.axis] = 1.0
+        r = np.asarray(x, dtype=float) - self.centre
+        r[:, self.axis] = 0.0
+        return self.omega * np.cross(e, r)
+
+    # ----- stages ---------------------------------------------------------------------------------
+    def init(self):
+        sim = self.sim
+        nt = sim.atom.ntypes
+        table = np.zeros((self.nwalls, nt + 1, dem_contact.NCOEFF))
+        for t in range(1, nt + 1):
+            if self.law:
+                row = dem_contact.row(self.law)
+            else:
+                if sim.pair is None or not hasattr(sim.pair, "coefficients"):
+                    raise DemError(f"fix {self.id} wall/drum: no coefficients given and no pair style to "
+                                   f"take them from")
+                row = sim.pair.coefficients(t, t)
+            table[:, t] = row
+        self.table = table
+        self.use_history = bool(np.any(table[:, 1:, dem_contact.KS] > 0))
+        if self.use_history:
+            sim.atom.add_field(f"fix_{self.id}_xi", (3 * self.nwalls,), np.float64, 0.0)
+        if self.ends is None and not sim.domain.periodic[self.axis]:
+            sim.warning(f"fix {self.id} wall/drum: no end walls and the box is not periodic along "
+                        f"{'xyz'[self.axis]}: particles can leave through the open ends")
+
+    def post_force(self):
+        self.compute(True)
+
+    def compute(self, advance):
+        sim = self.sim
+        a = sim.atom.data
+        xi = a[f"fix_{self.id}_xi"] if self.use_history else np.zeros((1, 3))
+        lo, hi = self.ends if self.ends else (0.0, 0.0)
+        _fix_wall_drum.drum_walls(a["x"], a["v"], a["omega"], a["f"], a["torque"], a["radius"], a["rmass"],
+                                  a["type"], a["mask"], int(self.groupbit), sim.atom.nlocal, self.axis,
+                                  self.centre, self.radius, self.omega, self.nwalls - 1, lo, hi,
+                                  self.ends_rotate, self.table, xi, self.use_history, sim.update.dt, advance,
+                                  self.stats)
+        self.ncontacts = int(self.stats[0])
+        self.max_overlap = float(self.stats[1])
+        self.torque = float(self.stats[2])
+        self.energy = float(self.stats[3])
+
+    def end_of_step(self):
+        dt = self.sim.update.dt
+        t0 = self.elapsed
+        # trapezoid: exact for the piecewise-linear ramp except within the step that ends it
+        self.angle += 0.5 * (self.omega_at(t0) + self.omega_at(t0 + dt)) * dt
+        self.elapsed = t0 + dt
+
+    def min_contact_time(self):
+        atom = self.sim.atom
+        n = atom.nlocal
+        types = atom.data["type"][:n]
+        tmin = np.inf
+        for t in np.unique(types):
+            m = float(atom.data["rmass"][:n][types == t].min())
+            row = self.table[0, t]
+            tmin = min(tmin, dem_contact.contact_time(row[dem_contact.KN], row[dem_contact.EN], m))
+        tmin = self.sim.comm.min(tmin)     # collective: every rank, with or without particles
+        return tmin if np.isfinite(tmin) else None
+
+    def thermo(self):
+        comm = self.sim.comm
+        return {"contacts": comm.sum(self.ncontacts), "omega": self.omega, "angle": self.angle,
+                "revs": self.angle / (2.0 * math.pi), "torque": comm.sum(self.torque)}
+
+    def state(self):
+        return {"angle": self.angle, "elapsed": self.elapsed}
+
+    def restore(self, state):
+        self.angle = float(state.get("angle", 0.0))
+        self.elapsed = float(state.get("elapsed", 0.0))
+
+    def unfix(self):
+        self.sim.atom.remove_field(f"fix_{self.id}_xi")

@@ -1,0 +1,316 @@
+"""fix wall/drum and the drum analysis computes: a single sphere against the rolling solutions, and the
+centrifuging transition of a bed (Part III sec 4.2)."""
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+from scipy.special import ellipk
+
+import dem
+from dem.errors import DemError
+from dem_process.compute_drum import surface_fit
+
+R, G = 0.05, 9.81
+LAW = "kn 1e5 en 0.73 mu 0.55 gamma_t 2000 ks 28571"
+
+
+
+def _single(r, omega, v="0 0 0", w="0 0 0", rho=2500.0):
+    """One sphere at the bottom of a drum of radius R (axis y, periodic along it), drum rotating at omega."""
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+        boundary f p f
+        region box block -0.06 0.06 0 0.03 -0.06 0.06
+        create_box 1 box
+        create_atoms 1 single 0 0.015 {-(R - r)!r} radius {r} density {rho} v {v} omega {w}
+        pair_style sphere
+        pair_coeff * * {LAW}
+        fix integ all nve/sphere
+        fix g all gravity {G} vector 0 0 -1
+        fix drum all wall/drum y 0 0 {R} omega {omega!r} {LAW}
+        compute co all corotate drum
+        timestep 1e-5
+        thermo 0
+    """)
+    return sim
+
+
+def _trajectory(sim, chunks, every=50):
+    """Angle phi of the sphere's centre from the bottom, positive in the sense of the rotation."""
+    t, phi, co = [], [], []
+    for _ in range(chunks):
+        sim.run(every)
+        x = sim.atom.local("x")[0]
+        t.append(sim.update.time)
+        phi.append(math.atan2(-x[0], -x[2]))
+        co.append(sim.thermo_keyword("c_co"))
+    return np.array(t), np.array(phi), np.array(co)
+
+
+def test_sphere_in_rigid_rotation_rolls_back_as_a_pendulum():
+    """A sphere starting in rigid-body rotation with the drum (centre velocity Omega (R - r), spin Omega:
+    no slip at the wall) is carried up, stops and rolls back. Rolling without slip on the moving wall,
+    (R - r) phi' + r omega = R Omega, with I = 2/5 m r^2 gives (7/5)(R - r) phi'' = -g sin(phi) whatever
+    Omega: a pendulum started at phi = 0 with phi' = Omega. Amplitude: cos(phi_max) = 1 - 0.7 (R - r)
+    Omega^2 / g; it is back at the bottom after half a period, T/2 = 2 K(sin^2(phi_max/2)) / w with
+    w^2 = 5 g / (7 (R - r)). Friction needed, (2/7) m g sin(phi), stays below mu N (no slip up to 62 deg).
+    Chosen phi_max = 30 deg. Measured: amplitude within 1e-7, half period within 1e-5 (contact
+    compliance, sampling every 50 steps). Tolerance 1e-3: a sliding sphere, or a sphere without its
+    rotational inertia (factor 7/5), would be off by more than 10 %."""
+    r = 0.005
+    L = R - r
+    phimax = math.radians(30.0)
+    W = math.sqrt((1 - math.cos(phimax)) * G / (0.7 * L))
+    sim = _single(r, W, v=f"{-W * L!r} 0 0", w=f"0 {W!r} 0")
+    t, phi, co = _trajectory(sim, 800)       # 0.4 s: three quarters of a period
+    assert co[0] == 1.0                                   # follows the drum as a rigid body at first
+    assert phi.max() == pytest.approx(phimax, rel=1e-3)
+    k = int(np.flatnonzero((phi[:-1] > 0) & (phi[1:] <= 0))[0])   # first return to the bottom
+    t_back = t[k] + (t[k + 1] - t[k]) * phi[k] / (phi[k] - phi[k + 1])
+    w = math.sqrt(5 * G / (7 * L))
+    assert t_back == pytest.approx(2 * ellipk(math.sin(phimax / 2) ** 2) / w, rel=1e-3)
+    assert phi.min() == pytest.approx(-phimax, rel=1e-3)  # and up the other side: no energy lost
+
+
+def test_sphere_at_rest_slips_then_rolls():
+    """A sphere at rest at the bottom of a drum suddenly rotating at Omega = 6 rad/s: the wall slips
+    under it and kinetic friction mu N (N = m g cos(phi) + m (R - r) phi'^2) drags it up and spins it,
+    until the contact point moves with the wall; it then rolls as the pendulum above. The DEM
+    trajectory follows the solution of these equations of motion (slip, then roll) to 5e-4 degrees
+    (sampled every 5e-4 s over 0.7 s); tolerance 0.01 degree, against an amplitude of 8.7 degrees."""
+    r, mu, W = 0.005, 0.55, 6.0
+    L = R - r
+    sim = _single(r, W)
+    t, phi, _ = _trajectory(sim, 700)
+    inertia = 0.4 * r * r        # per unit mass
+
+    def slip(_, y):
+        p, pd, _w = y
+        f = mu * (G * math.cos(p) + L * pd * pd)        # the wall is faster than the contact point
+        return [pd, (-G * math.sin(p) + f) / L, r * f / inertia]
+
+    def sticks(_, y):
+        return L * y[1] + r * y[2] - R * W
+    sticks.terminal, sticks.direction = True, 1
+    s1 = solve_ivp(slip, (0, 1), [0.0, 0.0, 0.0], events=sticks, rtol=1e-10, atol=1e-12, max_step=1e-4)
+    ts, y = s1.t_events[0][0], s1.y_events[0][0]
+    s2 = solve_ivp(lambda _, q: [q[1], -G * math.sin(q[0]) / (1.4 * L)], (ts, 0.8), y[:2], rtol=1e-10,
+                   atol=1e-12, dense_output=True, max_step=1e-3)
+    ode = np.where(t < ts, np.interp(t, s1.t, s1.y[0]), s2.sol(np.maximum(t, ts))[0])
+    assert 0.01 < ts < 0.03
+    assert np.abs(np.degrees(phi - ode)).max() < 0.01
+    assert math.degrees(phi.max()) == pytest.approx(8.74, abs=0.05)
+
+
+# ----- a bed: centrifuging at Fr >= 2, not at 5 rpm ---------------------------------------------------
+BED_LAW = "kn 1e4 en 0.73 mu 0.55 gamma_t 2000 ks 2857"
+
+
+@pytest.fixture(scope="module")
+def bed(tmp_path_factory):
+    """350 spheres of radius 3 mm filling 60 % of a drum of radius 50 mm, 14 mm deep (periodic), settled.
+    kn = 1e4 (softer than Table 6, overlaps < 0.1 %) allows dt = 1.5e-5 (25 steps per contact)."""
+    path = tmp_path_factory.mktemp("drum") / "bed.restart"
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+        boundary f p f
+        region box block -0.051 0.051 0 0.014 -0.051 0.051
+        create_box 1 box
+        region drum cylinder y 0 0 {R} EDGE EDGE
+        pair_style sphere
+        pair_coeff * * {BED_LAW}
+        fix ins all insert 11 drum count 350 radius 0.003 density 2500
+        fix integ all nve/sphere
+        fix g all gravity {G} vector 0 0 -1
+        fix drum all wall/drum y 0 0 {R} rpm 0 {BED_LAW}
+        timestep 1.5e-5
+        thermo 0
+        run 15000
+        write_restart {path}
+    """)
+    assert sim.atom.natoms == 350 and sim.thermo_keyword("ke") < 1e-4
+    return path
+
+
+def _rotate(path, rate):
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+        read_restart {path}
+        pair_style sphere
+        pair_coeff * * {BED_LAW}
+        fix integ all nve/sphere
+        fix g all gravity {G} vector 0 0 -1
+        fix drum all wall/drum y 0 0 {R} {rate} {BED_LAW}
+        compute co all corotate drum
+        compute rep all repose drum
+        compute vm all vmean drum drum
+        timestep 1.5e-5
+        thermo 0
+    """)
+    return sim
+
+
+def test_bed_centrifuges_at_froude_3(bed):
+    """Fr = Omega^2 R / g = 3, reached with a linear ramp over 0.5 s: after the transient (cascading,
+    cataracting), the bed is carried all around the drum as a rigid body from about 0.6 s on. Measured
+    at 1.2 s (three insertion seeds): 99 % of the particles co-rotate, 25 % at the top of the drum
+    (within 45 degrees of the top, near the wall; a uniform ring: 25 %). A thin
+    layer of spheres does not centrifuge (an isolated sphere rolls on the wall whatever Omega, see the
+    pendulum test): the bed is 3 particles thick once centrifuged."""
+    W = math.sqrt(3.0 * G / R)
+    sim = _rotate(bed, f"omega {W!r} ramp 0.5")
+    sim.run(80000)
+    co, co_top, top = (sim.thermo_keyword(f"c_co[{k}]") for k in (1, 2, 3))
+    assert co > 0.9
+    assert co_top > 0.15 and top > 0.15
+    # the mean velocity of a centrifuged bed is that of the rigid rotation, below Omega R
+    assert 0.6 < sim.thermo_keyword("c_vm") < 1.0
+
+
+def test_bed_does_not_centrifuge_at_5rpm(bed):
+    """At 5 rpm (Fr = 0.0014) the bed's lower part turns with the drum, tilting the free surface up,
+    but nothing is carried over the top. After 0.6 s (0.05 turn, 18 degrees) the surface has tilted by
+    15 degrees (measured, three seeds) with the drum: the bed has not reached its repose angle yet (25
+    degrees, from 1.2 s on, when avalanches start)."""
+    sim = _rotate(bed, "rpm 5")
+    sim.run(40000)
+    assert sim.thermo_keyword("c_co[3]") == 0.0        # nobody at the top of the drum
+    assert sim.thermo_keyword("c_co") > 0.5            # the passive region turns with the drum
+    angle = sim.thermo_keyword("c_rep")
+    assert 5.0 < angle < 40.0
+
+
+# ----- bookkeeping -----------------------------------------------------------------------------------
+def test_angle_ramp_and_restart(tmp_path):
+    """The drum angle integrates the rate exactly through the linear ramp: after t > T_ramp it is
+    Omega (t - T_ramp / 2); it is saved in restarts and continues from there."""
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+        boundary f p f
+        region box block -0.06 0.06 0 0.03 -0.06 0.06
+        create_box 1 box
+        pair_style sphere
+        pair_coeff * * {LAW}
+        fix integ all nve/sphere
+        fix drum all wall/drum y 0 0 {R} rpm 60 ramp 0.01 {LAW}
+        timestep 1e-4
+        thermo 0
+        run 300
+        write_restart {tmp_path / 'd.restart'}
+    """)
+    W = 2 * math.pi
+    assert sim.thermo_keyword("f_drum[angle]") == pytest.approx(W * (0.03 - 0.005), rel=1e-9)
+    assert sim.thermo_keyword("f_drum[omega]") == pytest.approx(W)
+    b = dem.Simulation(screen=False)
+    b.commands(f"""
+        read_restart {tmp_path / 'd.restart'}
+        pair_style sphere
+        pair_coeff * * {LAW}
+        fix drum all wall/drum y 0 0 {R} rpm 60 ramp 0.01 {LAW}
+        timestep 1e-4
+        thermo 0
+        run 100
+    """)
+    assert b.thermo_keyword("f_drum[angle]") == pytest.approx(W * (0.04 - 0.005), rel=1e-9)
+
+
+def test_end_walls_contain_particles():
+    """With `ends LO HI fixed` and no periodicity along the axis, a sphere thrown along the axis bounces
+    back from an end wall and stays in the drum."""
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+        boundary f f f
+        region box block -0.06 0.06 -0.001 0.031 -0.06 0.06
+        create_box 1 box
+        create_atoms 1 single 0 0.015 -0.04 radius 0.003 density 2500 v 0 1.0 0
+        pair_style sphere
+        pair_coeff * * {LAW}
+        fix integ all nve/sphere
+        fix g all gravity {G} vector 0 0 -1
+        fix drum all wall/drum y 0 0 {R} rpm 10 ends 0 0.03 rotate {LAW}
+        timestep 1e-5
+        thermo 0
+        run 1500
+    """)
+    assert sim.gather("v")[0, 1] < 0                   # came back from the far end (y = 0.03) at 0.012 s
+    sim.run(20000)
+    y = sim.gather("x")[0, 1]
+    assert 0.003 - 1e-4 <= y <= 0.027 + 1e-4
+
+
+def test_surface_fit_recovers_a_tilted_surface():
+    """Particles filling a disc of radius 1 below a line of slope tan(25 deg): the fit of the highest
+    particle per bin gives 25 degrees (within 1 degree: one bin's height step)."""
+    rng = np.random.default_rng(3)
+    p = rng.uniform(-1, 1, (20000, 2))
+    slope = math.tan(math.radians(25))
+    keep = (np.hypot(p[:, 0], p[:, 1]) < 1) & (p[:, 1] < -0.2 + slope * p[:, 0])
+    angle, b, a, used = surface_fit(p[keep, 0], p[keep, 1], nbins=20, trim=0.15)
+    assert angle == pytest.approx(25.0, abs=1.0)
+    assert a == pytest.approx(-0.2, abs=0.03) and used >= 10
+
+
+def test_errors():
+    sim = dem.Simulation(screen=False)
+    sim.commands("region box block -1 1 -1 1 -1 1\ncreate_box 1 box")
+    with pytest.raises(DemError, match="AXIS"):
+        sim.command("fix d all wall/drum w 0 0 0.5 kn 1 en 0.5")
+    with pytest.raises(DemError, match="unknown keyword"):
+        sim.command("fix d all wall/drum y 0 0 0.5 rmp 5 kn 1 en 0.5")
+    sim.command("fix d all wall/drum y 0 0 0.5 rpm 5 kn 1 en 0.5")
+    sim.command("compute c all corotate d")
+    with pytest.raises(DemError, match="not a rotating drum"):
+        sim.command("fix g all gravity 9.81")
+        sim.command("compute bad all corotate g")
+        sim.thermo_keyword("c_bad")
+
+
+def test_pictures_and_series(tmp_path):
+    """dump png writes the cross-section during the run; tools/drum_frames.py draws the same from the HDF5
+    dump; fix print/series writes one line per N steps (plus the first) that tools/plot_series.py plots."""
+    pytest.importorskip("matplotlib")
+    pytest.importorskip("h5py")
+    import sys
+    from pathlib import Path
+    tools = Path(__file__).resolve().parents[1] / "tools"
+    sys.path.insert(0, str(tools))
+    import drum_analysis
+    import drum_frames
+    import plot_series
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+        boundary f p f
+        region box block -0.06 0.06 0 0.03 -0.06 0.06
+        create_box 1 box
+        region inside cylinder y 0 0 {R} EDGE EDGE
+        pair_style sphere
+        pair_coeff * * {LAW}
+        fix ins all insert 5 inside count 40 radius 0.003 density 2500
+        fix integ all nve/sphere
+        fix g all gravity {G} vector 0 0 -1
+        fix drum all wall/drum y 0 0 {R} rpm 30 {LAW}
+        compute vm all vmean drum drum
+        compute co all corotate drum
+        compute cn all coord
+        timestep 1e-5
+        thermo 0
+        fix series all print/series 50 {tmp_path / 'd.dat'} c_vm c_co[2] f_drum[revs] ke c_cn
+        dump h all h5 100 {tmp_path / 'd.h5'}
+        dump p all png 100 {tmp_path / 'p_*.png'} drum drum size 300
+        run 200
+    """)
+    sim.close()
+    assert (tmp_path / "p_0.png").exists() and (tmp_path / "p_200.png").exists()
+    names, cols = plot_series.read_series(tmp_path / "d.dat")
+    assert names == ["step", "time", "c_vm", "c_co[2]", "f_drum[revs]", "ke", "c_cn"]
+    np.testing.assert_array_equal(cols["step"], [0, 50, 100, 150, 200])
+    assert cols["f_drum[revs]"][-1] == pytest.approx(0.5 * 200 * 1e-5)   # 30 rpm = 0.5 turn/s
+    drum_frames.main([str(tmp_path / "d.h5"), "--frames", "last", "--size", "300"])
+    assert (tmp_path / "d_200.png").exists()
+    plot_series.main([str(tmp_path / "d.dat"), "--x", "tstar", "--rpm", "30"])
+    assert (tmp_path / "d_series.png").exists()
+    drum_analysis.main(["--rpm", "30", "--series", str(tmp_path / "d.dat"), "--h5", str(tmp_path / "d.h5"),
+                        "-o", str(tmp_path / "a")])
+    for name in ("a_vmean.png", "a_coordination.png", "a_pdf.png"):
+        assert (tmp_path / name).exists()
