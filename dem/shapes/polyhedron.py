@@ -1,0 +1,221 @@
+"""Convex polyhedra: from vertices, OBJ/STL files, the regular tetrahedron and Descantes' pinacoid.
+
+The convex hull (scipy.spatial.ConvexHull) of the given points is the shape. Mass properties come from
+the divergence theorem on the outward triangulated hull (signed tetrahedra from the origin). The shape is
+then recentred on its centre of mass and rotated onto its principal axes; ``centroid`` and ``rotation``
+record that transform (input point = centroid + rotation @ body point). Among the equivalent principal
+frames the one closest to the input axes is chosen, so a shape already given in principal axes (a box,
+the pinacoid) keeps them, and degenerate moments (cube, tetrahedron) keep the input axes.
+"""
+import numpy as np
+from scipy.spatial import ConvexHull, HalfspaceIntersection
+
+from .base import POLYHEDRON, Shape, packed_params
+
+_DEGENERATE = 1e-9   # relative gap below which two principal moments are treated as equal
+
+
+def hull_mesh(points):
+    """(vertices, outward triangles) of the convex hull of ``points``; vertices are the hull vertices only."""
+    P = np.asarray(points, dtype=float).reshape(-1, 3)
+    if len(P) < 4:
+        raise ValueError("a polyhedron needs at least 4 points")
+    h = ConvexHull(P)
+    idx = np.full(len(P), -1)
+    idx[h.vertices] = np.arange(len(h.vertices))
+    V = P[h.vertices]
+    F = idx[h.simplices]
+    n = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
+    flip = np.einsum("ij,ij->i", n, h.equations[:, :3]) < 0
+    F[flip] = F[flip][:, [0, 2, 1]]
+    return V, F, h.equations
+
+
+def mesh_mass_properties(V, F):
+    """Volume, centre of mass and second moment int x x^T dV of a closed outward triangle mesh."""
+    a, b, c = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
+    d6 = np.einsum("ij,ij->i", a, np.cross(b, c))           # 6 x signed volume of tet (0, a, b, c)
+    vol = d6.sum() / 6.0
+    s = a + b + c
+    com = (d6[:, None] * s).sum(0) / 24.0 / vol
+    # int over tet (0, a, b, c) of x x^T = d6/120 (a a^T + b b^T + c c^T + s s^T)
+    M = np.einsum("i,ij,ik->jk", d6, a, a) + np.einsum("i,ij,ik->jk", d6, b, b) \
+        + np.einsum("i,ij,ik->jk", d6, c, c) + np.einsum("i,ij,ik->jk", d6, s, s)
+    return float(vol), com, M / 120.0
+
+
+def inertia_from_second_moment(M):
+    return np.trace(M) * np.eye(3) - M
+
+
+def principal_frame(I):
+    """Rotation R (det +1, columns = principal axes) closest to the identity, and moments diag(R^T I R)."""
+    w, Q = np.linalg.eigh(I)
+    scale = max(abs(w).max(), 1e-300)
+    eq01, eq12 = w[1] - w[0] <= _DEGENERATE * scale, w[2] - w[1] <= _DEGENERATE * scale
+    if eq01 and eq12:
+        R = np.eye(3)
+    elif eq01 or eq12:
+        u = Q[:, 2] if eq01 else Q[:, 0]            # the distinct axis
+        k = int(np.argmax(abs(u)))
+        u = u * np.sign(u[k])
+        i, j = (k + 1) % 3, (k + 2) % 3
+        ei = np.eye(3)[i]
+        a = ei - u * (u @ ei)
+        if np.linalg.norm(a) < 1e-6:
+            ei = np.eye(3)[j]
+            a = ei - u * (u @ ei)
+            a /= np.linalg.norm(a)
+            R = np.empty((3, 3))
+            R[:, k], R[:, j] = u, a
+            R[:, i] = np.cross(a, u)
+        else:
+            a /= np.linalg.norm(a)
+            R = np.empty((3, 3))
+            R[:, k], R[:, i] = u, a
+            R[:, j] = np.cross(u, a)
+    else:
+        from itertools import permutations
+        best = max(permutations(range(3)), key=lambda p: sum(abs(Q[p[c], c]) for c in range(3)))
+        R = np.empty((3, 3))
+        for col, row in enumerate(best):
+            R[:, row] = Q[:, col] * np.sign(Q[row, col] or 1.0)
+        if np.linalg.det(R) < 0:
+            k = int(np.argmin(abs(np.diag(R))))
+            R[:, k] = -R[:, k]
+    Qr, Rr = np.linalg.qr(R)
+    R = Qr * np.sign(np.diag(Rr))      # re-orthonormalised, closest to R
+    return R, np.diag(R.T @ I @ R).copy()
+
+
+class Polyhedron(Shape):
+    """Convex hull of a point set, recentred and aligned with its principal axes."""
+    kind = POLYHEDRON
+    name = "polyhedron"
+
+    def __init__(self, points, crust=None, name=None):
+        if name:
+            self.name = name
+        V, F, _ = hull_mesh(points)
+        vol, com, M = mesh_mass_properties(V, F)
+        if not vol > 0:
+            raise ValueError("%s: degenerate (flat) point set" % self.name)
+        Mc = M - vol * np.outer(com, com)
+        R, _ = principal_frame(inertia_from_second_moment(Mc))
+        self.centroid, self.rotation = com, R
+        Vb = (V - com) @ R
+        self.vertices = np.ascontiguousarray(Vb)
+        self.faces = F
+        self.volume, c2, M2 = mesh_mass_properties(Vb, F)
+        I = inertia_from_second_moment(M2 - self.volume * np.outer(c2, c2))
+        self.principal_moments = np.diag(I).copy()
+        self.params = packed_params()
+        self.bounding_radius = float(np.linalg.norm(Vb, axis=1).max())
+        eq = self._planes()
+        self.inradius = float(-eq[:, 3].max())
+        self._init_crust(crust)
+
+    def _planes(self):
+        """Unique face planes n.x + off <= 0 (unit outward n) in the body frame."""
+        V, F = self.vertices, self.faces
+        n = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
+        n /= np.linalg.norm(n, axis=1)[:, None]
+        off = -np.einsum("ij,ij->i", n, V[F[:, 0]])
+        eq = np.c_[n, off]
+        key = np.round(np.c_[n, off / max(self.bounding_radius, 1e-300)] * 1e9)
+        _, keep = np.unique(key, axis=0, return_index=True)
+        return eq[np.sort(keep)]
+
+    def _make_core(self):
+        if self.crust == 0.0:
+            self.core_kind, self.core_params, self.core_vertices = POLYHEDRON, self.params.copy(), self.vertices
+            return
+        eq = self._planes().copy()
+        eq[:, 3] += self.crust
+        hs = HalfspaceIntersection(eq, np.zeros(3))
+        P = hs.intersections
+        # non-simple vertices (4+ faces) give clusters of nearly equal points: merge them
+        tol = 1e-10 * self.bounding_radius
+        keep = []
+        for p in P:
+            if all(np.linalg.norm(p - q) > tol for q in keep):
+                keep.append(p)
+        Vc, _, _ = hull_mesh(np.array(keep))
+        self.core_kind, self.core_params = POLYHEDRON, self.params.copy()
+        self.core_vertices = np.ascontiguousarray(Vc)
+
+    def mesh(self, resolution=None):
+        return self.vertices.copy(), self.faces.copy()
+
+    def scaled(self, factor):
+        s = Polyhedron(self.vertices * factor, crust=self._scaled_crust(factor), name=self.name)
+        return s
+
+    @classmethod
+    def from_file(cls, path, crust=None, scale=1.0):
+        """Convex hull of the vertices of an OBJ or STL (ASCII or binary) file."""
+        return cls(np.asarray(read_mesh_vertices(path)) * scale, crust=crust,
+                   name=str(path).rsplit("/", 1)[-1].rsplit(".", 1)[0])
+
+
+def read_mesh_vertices(path):
+    """Vertex coordinates of an OBJ or STL file (faces are not needed: the shape is the hull)."""
+    path = str(path)
+    low = path.lower()
+    if not low.endswith((".obj", ".stl")):
+        raise ValueError("unsupported mesh file (OBJ or STL): %s" % path)
+    with open(path, "rb") as fh:
+        data = fh.read()
+    if low.endswith(".obj"):
+        pts = [list(map(float, line.split()[1:4])) for line in data.decode(errors="replace").splitlines()
+               if line.startswith("v ")]
+        return np.array(pts)
+    if low.endswith(".stl"):
+        if data[:5] == b"solid" and b"facet" in data[:1000] and b"vertex" in data:
+            pts = [list(map(float, line.split()[1:4])) for line in data.decode(errors="replace").splitlines()
+                   if line.strip().startswith("vertex")]
+            return np.array(pts)
+        n = int(np.frombuffer(data[80:84], dtype="<u4")[0])
+        rec = np.frombuffer(data[84:84 + 50 * n], dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)),
+                                                                   ("attr", "<u2")]))
+        return rec["v"].reshape(-1, 3).astype(float)
+
+
+def tetrahedron(edge, crust=None):
+    """Regular tetrahedron of edge length ``edge`` (vertices (+-1, +-1, +-1) with an even number of minus
+    signs, scaled): volume edge^3/(6 sqrt 2), isotropic inertia edge^2/20 per unit mass."""
+    s = edge / (2.0 * np.sqrt(2.0))
+    V = s * np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], float)
+    return Polyhedron(V, crust=crust, name="tetrahedron")
+
+
+def pinacoid_vertices(L, G, E, alpha=60.0):
+    """Vertices of Descantes' pinacoid (Fig. 4 / Table 1): 8 vertices, 14 edges, 8 faces.
+
+    Reconstructed from the published volume V = L G E / 6 (3 - E / (L tan alpha)) and the counts: a
+    rectangle L x G in the mid plane z = 0 and two ridges along x of length L - E / tan(alpha) at
+    z = +-E/2 (a double hip roof). The end faces are triangles inclined at ``alpha`` (degrees) to the mid
+    plane, the long faces trapezoids. For L = G = E the mid-plane corners lie on the sphere of diameter
+    L sqrt(2), the circumscribed sphere d_sph = sqrt(2) L of Table 1, which the ridge ends stay inside.
+    """
+    t = np.tan(np.radians(alpha))
+    if not (L > 0 and G > 0 and E > 0 and 0 < alpha < 90):
+        raise ValueError("pinacoid: L, G, E > 0 and 0 < alpha < 90 degrees required")
+    r = L / 2.0 - E / (2.0 * t)
+    if r < 0:
+        raise ValueError("pinacoid: E / tan(alpha) must not exceed L (alpha is in degrees)")
+    V = [[sx * L / 2, sy * G / 2, 0.0] for sx in (-1, 1) for sy in (-1, 1)]
+    V += [[sx * r, 0.0, sz * E / 2] for sx in (-1, 1) for sz in (-1, 1)]
+    return np.array(V)
+
+
+def pinacoid(L, G, E, alpha=60.0, crust=None):
+    """Descantes' pinacoid (length L, width G, thickness E, end-face angle alpha in degrees)."""
+    s = Polyhedron(pinacoid_vertices(L, G, E, alpha), crust=crust, name="pinacoid")
+    s.pinacoid_parameters = (L, G, E, alpha)
+    return s
+
+
+def pinacoid_volume(L, G, E, alpha=60.0):
+    """Table 1 of Descantes (2022): V = L G E / 6 (3 - E / (L tan alpha))."""
+    return L * G * E / 6.0 * (3.0 - E / (L * np.tan(np.radians(alpha))))
