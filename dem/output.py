@@ -78,6 +78,11 @@ class Output:
         sim = self.sim
         natoms = sim.atom.natoms
         up = sim.update
+        if nsteps == 0:      # run 0: the state was evaluated and output, nothing to time
+            sim.print(f"Setup only (run 0) with {natoms} particles: {total:.4g} s")
+            for dump in self.dumps.values():
+                dump.flush()
+            return
         sim.print(f"Loop time of {loop:.4g} on {sim.comm.nprocs} procs for {nsteps} steps with {natoms} "
                   f"particles")
         if loop > 0 and nsteps:
