@@ -1,6 +1,5 @@
 """Set-up commands: particle creation, groups, set, read_data of LAMMPS files, thermo keywords."""
 import math
-import os
 
 import numpy as np
 import pytest
@@ -13,7 +12,6 @@ boundary p p f
 region box block 0 0.01 0 0.01 0 0.02
 create_box 2 box
 """
-SHARED = os.path.join(os.path.dirname(__file__), "..", "..", "shared", "bench", "sphere-bed")
 
 
 def make(script):
@@ -62,12 +60,41 @@ def test_groups_and_set():
     assert np.all(sim.atom.local("v")[top] == [0, 0, -1])
 
 
-def test_read_data_of_the_lammps_bed():
-    sim = make(f"units si\nboundary f f fm\nread_data {SHARED}/bed_8000.data\n")
-    assert sim.atom.natoms == 8000
-    assert sim.domain.lo.tolist() == [0, 0, 0] and sim.domain.hi[:2].tolist() == [0.02, 0.02]
-    assert np.allclose(sim.gather("radius"), 0.0005)
-    assert sorted(sim.gather("tag")) == list(range(1, 8001))
+DATA = """LAMMPS data file via write_data, version 22 Jul 2025, timestep = 30000, units = si
+
+3 atoms
+2 atom types
+
+0 0.02 xlo xhi
+0 0.02 ylo yhi
+0 0.044 zlo zhi
+
+Atoms # sphere
+
+7 1 0.001 2500 0.0005 0.0005 0.0005 0 0 0
+2 2 0.002 1000 0.003 0.002 0.001 0 0 0
+5 1 0.001 2500 0.0015 0.0005 0.0005 0 0 0
+
+Velocities
+
+2 0.1 0.2 0.3 1 2 3
+7 0 0 -1 0 0 0
+5 0 0 0 0 0 0
+"""
+
+
+def test_read_data_of_a_lammps_sphere_file(tmp_path):
+    """The format of LAMMPS write_data for atom_style sphere (the benchmark beds are written so)."""
+    path = tmp_path / "bed.data"
+    path.write_text(DATA)
+    sim = make(f"units si\nboundary f f fm\nread_data {path}\n")
+    assert sim.atom.natoms == 3 and sim.atom.ntypes == 2
+    assert sim.domain.lo.tolist() == [0, 0, 0] and sim.domain.hi.tolist() == [0.02, 0.02, 0.044]
+    assert sim.gather("tag").tolist() == [2, 5, 7]
+    assert sim.gather("radius").tolist() == [0.001, 0.0005, 0.0005]
+    assert sim.gather("rmass")[0] == pytest.approx(1000 * 4 / 3 * math.pi * 0.001 ** 3, rel=1e-14)
+    assert sim.gather("v")[0].tolist() == [0.1, 0.2, 0.3] and sim.gather("omega")[0].tolist() == [1, 2, 3]
+    assert sim.gather("v")[2].tolist() == [0, 0, -1]
 
 
 def test_thermo_keywords_and_run_zero():
