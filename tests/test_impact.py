@@ -1,5 +1,5 @@
 """Binary impacts against the closed forms of the Grains3D contact law (Part III eq. 10-16; see
-/work/shared/science/README.md): normal restitution and contact duration,
+../shared/science/README.md): normal restitution and contact duration,
     omega0^2 = kn / m_ij,  gamma_n = beta omega0,  T_c = pi / sqrt(omega0^2 - gamma_n^2),  e = exp(-gamma_n T_c),
 for a sphere against a wall (m_ij = m) and two unequal spheres (m_ij = m1 m2 / (m1 + m2)), and the Coulomb
 impulse solution of an oblique frictional impact (sliding throughout, and the rolling limit).
