@@ -8,7 +8,6 @@ frames the one closest to the input axes is chosen, so a shape already given in 
 the pinacoid) keeps them, and degenerate moments (cube, tetrahedron) keep the input axes.
 """
 import numpy as np
-from scipy.spatial import ConvexHull, HalfspaceIntersection
 
 from .base import POLYHEDRON, Shape, packed_params
 
@@ -20,6 +19,7 @@ def hull_mesh(points):
     P = np.asarray(points, dtype=float).reshape(-1, 3)
     if len(P) < 4:
         raise ValueError("a polyhedron needs at least 4 points")
+    from scipy.spatial import ConvexHull    # scipy is imported only when a hull is built
     h = ConvexHull(P)
     idx = np.full(len(P), -1)
     idx[h.vertices] = np.arange(len(h.vertices))
@@ -132,6 +132,7 @@ class Polyhedron(Shape):
             return
         eq = self._planes().copy()
         eq[:, 3] += self.crust
+        from scipy.spatial import HalfspaceIntersection
         hs = HalfspaceIntersection(eq, np.zeros(3))
         P = hs.intersections
         # non-simple vertices (4+ faces) give clusters of nearly equal points: merge them

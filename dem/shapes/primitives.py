@@ -7,8 +7,6 @@ exponents of (|x/a|^n2 + |y/b|^n2)^(n1/n2) + |z/c|^n1 <= 1 (n1, n2 >= 2; n = 2 i
 n tends to the box). ``crust`` defaults to a small fraction of the inradius (see base.py).
 """
 import numpy as np
-from scipy.special import gammaln
-from scipy.optimize import minimize
 
 from .base import (BOX, CONE, CYLINDER, ELLIPSOID, SPHERE, SUPERQUADRIC, Shape, orient_outward, packed_params,
                    uv_mesh)
@@ -233,6 +231,7 @@ class Superquadric(Shape):
         self._init_crust(crust)
 
     def _octant(self, al, be, ga):
+        from scipy.special import gammaln      # imported on use: keeps `import dem` light
         n1, n2 = self.n1, self.n2
         lj2 = (gammaln((al + 1) / n2) + gammaln((be + 1) / n2) - gammaln((al + be + 2) / n2 + 1.0)
                - 2.0 * np.log(n2))
@@ -247,6 +246,7 @@ class Superquadric(Shape):
         return np.c_[a * ce * _spow(np.cos(om), e2), b * ce * _spow(np.sin(om), e2), c * _spow(np.sin(eta), e1)]
 
     def _bounding_radius(self):
+        from scipy.optimize import minimize
         g = np.linspace(0.0, np.pi / 2, 201)
         E, O = np.meshgrid(g, g, indexing="ij")
         r2 = (self._surface(E.ravel(), O.ravel()) ** 2).sum(1)
