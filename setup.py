@@ -39,7 +39,8 @@ setup(
     extras_require={"mpi": ["mpi4py", "mpich"], "test": ["pytest", "mpi4py", "mpich", "vtk", "coal"]},
     entry_points={
         "console_scripts": ["dem = dem.cli:main"],
-        "dem": ["core = dem.builtin", "sphere = dem_sphere", "fixes = dem_fixes", "process = dem_process"],
+        "dem": ["core = dem.builtin", "sphere = dem_sphere", "fixes = dem_fixes", "process = dem_process",
+                "convex = dem_convex"],
     },
     zip_safe=False,
 )

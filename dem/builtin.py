@@ -10,9 +10,10 @@ from .integrate import INTEGRATORS
 from .read_data import ReadData
 from .region import REGIONS
 from .restart import RESTART_COMMANDS
+from .shape_command import SHAPE_STYLES
 
 
 @hookimpl
 def dem_styles():
     return (COMMANDS + COMPUTE_COMMANDS + [CreateAtoms, SetCommand, ReadData] + RESTART_COMMANDS + REGIONS
-            + INTEGRATORS + BALANCE_STYLES + [DumpH5, DumpVTK])
+            + INTEGRATORS + BALANCE_STYLES + SHAPE_STYLES + [DumpH5, DumpVTK])

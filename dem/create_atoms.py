@@ -3,6 +3,7 @@ import math
 
 import numpy as np
 
+from . import shape_command
 from .command import Command
 from .commands import find_region
 from .errors import DemError
@@ -38,15 +39,18 @@ def _radius_words(a, start):
     """Split the keyword tail, allowing `radius uniform A B` / `radius gaussian A B` (3 values)."""
     words = a.words[start:]
     kw, i = {}, 0
-    counts = {"radius": 1, "density": 1, "v": 3, "omega": 3, "attempts": 1, "seed": 1}
+    counts = {"radius": 1, "density": 1, "v": 3, "omega": 3, "attempts": 1, "seed": 1, "shape": 1,
+              "scale": 1, "quat": 4}
     while i < len(words):
         key = words[i]
         if key not in counts:
             from .errors import did_you_mean
             raise a.error(f"unknown keyword '{key}'{did_you_mean(key, counts)}")
         n = counts[key]
-        if key == "radius" and i + 1 < len(words) and words[i + 1] in ("uniform", "gaussian"):
+        if key in ("radius", "scale") and i + 1 < len(words) and words[i + 1] in ("uniform", "gaussian"):
             n = 3
+        if key == "quat" and i + 1 < len(words) and words[i + 1] == "random":
+            n = 1
         if i + n >= len(words) + 1 or len(words[i + 1:i + 1 + n]) < n:
             raise a.error(f"keyword '{key}' needs {n} value(s)")
         kw[key] = words[i + 1:i + 1 + n]
@@ -70,6 +74,11 @@ class CreateAtoms(Command):
     Keywords: `radius R` | `radius uniform RMIN RMAX` | `radius gaussian MEAN SD` (default 0.5),
     `density RHO` (default 1), `v VX VY VZ`, `omega WX WY WZ`, `attempts N` (random: tries per particle,
     default 1000).
+    Shaped particles (see the `shape` command): `shape NAME`, `scale S` | `scale uniform SMIN SMAX` |
+    `scale gaussian MEAN SD` (default 1; or give the bounding `radius` instead), `quat W X Y Z` |
+    `quat random` (orientation body -> space, default identity; random: uniform, from the seed of
+    `random`, or `seed N`). Mass = density x volume, principal inertia of the (scaled) shape, radius =
+    bounding radius; `random` keeps the bounding spheres apart.
     `random` places N non-overlapping spheres uniformly inside the region (fully inside it, not
     overlapping existing particles, also across periodic boundaries), reproducibly for a given SEED.
     Example: `create_atoms 1 random 2000 4821 fill radius 0.0005 density 2500`."""
@@ -90,7 +99,7 @@ class CreateAtoms(Command):
             kw = _radius_words(a, 5)
             rng = np.random.default_rng(int(kw.get("seed", ["1"])[0]))
             x = np.array([a.floats(2, 3, "position")])
-            radius = radius_spec(a, kw, 1, rng)
+            radius = self.sizes(a, kw, 1, rng)
         elif how == "random":
             a.need(5)
             n = a.int(2, "N", nonneg=True)
@@ -98,7 +107,7 @@ class CreateAtoms(Command):
             region = find_region(sim, a[4])
             kw = _radius_words(a, 5)
             rng = np.random.default_rng(seed)
-            radius = radius_spec(a, kw, n, rng)
+            radius = self.sizes(a, kw, n, rng)
             attempts = int(kw.get("attempts", ["1000"])[0])
             x = self.random_fill(region, radius, rng, attempts)
         elif how == "lattice":
@@ -108,7 +117,8 @@ class CreateAtoms(Command):
             spacing = a.float(4, "spacing", positive=True)
             kw = _radius_words(a, 5)
             x = self.lattice(region, kind, spacing)
-            radius = radius_spec(a, kw, len(x), np.random.default_rng(1))
+            rng = np.random.default_rng(int(kw.get("seed", ["1"])[0]))
+            radius = self.sizes(a, kw, len(x), rng)
             if np.any(2 * radius > spacing * (1.0 if kind == "sc" else 0.866 if kind == "bcc" else 0.7071) + 1e-12):
                 raise a.error("particles of this radius overlap on this lattice")
         else:
@@ -125,13 +135,47 @@ class CreateAtoms(Command):
         atom = sim.atom
         tags = np.arange(atom.max_tag + 1, atom.max_tag + 1 + len(x), dtype=np.int64)
         radius = np.broadcast_to(radius, (len(x),))
+        quat = self.orientations(a, kw, len(x), rng)
         mine = sim.comm.owned_mask(x)
-        atom.add(x[mine], radius[mine], sphere_mass(radius[mine], density), type_, v=v, omega=omega,
-                 tags=tags[mine])
+        s = atom.add(x[mine], radius[mine], sphere_mass(radius[mine], density), type_, v=v, omega=omega,
+                     tags=tags[mine])
+        if "shape" in kw:
+            p = shape_command.properties(sim, kw["shape"][0], radius=radius[mine], density=density)
+            for name in ("rmass", "inertia", "shape"):
+                atom.data[name][s] = p[name]
+        if quat is not None:
+            atom.data["quat"][s] = quat[mine]
         atom.max_tag = max(atom.max_tag, int(tags[-1]) if len(tags) else 0)
         atom.natoms += len(x)
         sim.neighbor.invalidate()
         sim.print(f"Created {len(x)} particles")
+
+    def sizes(self, a, kw, n, rng):
+        """Bounding radii: `radius ...` for spheres; for a shape `scale ...` (default 1) times its bounding
+        radius, or `radius ...` directly."""
+        if "shape" not in kw:
+            if "scale" in kw:
+                raise a.error("'scale' needs 'shape NAME' (spheres: radius)")
+            return radius_spec(a, kw, n, rng)
+        idx = shape_command.shape_index(self.sim, kw["shape"][0])
+        if "radius" in kw:
+            if "scale" in kw:
+                raise a.error("give either 'scale' or 'radius' for shaped particles")
+            return radius_spec(a, kw, n, rng)
+        if "scale" not in kw:
+            return np.full(n, float(self.sim.shapes.radius[idx]))
+        return radius_spec(a, {"radius": kw["scale"]}, n, rng) * self.sim.shapes.radius[idx]
+
+    def orientations(self, a, kw, n, rng):
+        q = kw.get("quat")
+        if q is None:
+            return None
+        if q == ["random"]:
+            return shape_command.random_quaternions(rng, n)
+        q = np.array([a.to_float(w, "quat") for w in q])
+        if not np.linalg.norm(q) > 0:
+            raise a.error("quat must not be zero")
+        return np.broadcast_to(q / np.linalg.norm(q), (n, 4))
 
     def existing(self):
         """Positions and radii of every particle already present (all ranks), ordered by id."""
@@ -220,12 +264,15 @@ class SetCommand(Command):
 
     Keywords (applied in order): `v VX VY VZ`, `vx V`, `vy V`, `vz V`, `omega WX WY WZ`, `x X`, `y Y`,
     `z Z`, `radius R` and `diameter D` (mass follows at constant density), `density RHO`, `mass M`,
-    `type T`. Example: `set group top v 0 0 -1`."""
+    `type T`, `quat W X Y Z` | `quat random` (orientation; random: uniform, reproducible for a given
+    `seed N`, default 1), `shape NAME` (the shape of the `shape` command at `scale S`, default 1; the
+    density is kept), `scale S` (rescale shaped particles). For a shaped particle `radius`/`diameter`
+    is its bounding radius/diameter (the body is scaled to it). Example: `set group top v 0 0 -1`."""
     style = "set"
     usage = "atom|type|group|region ID keyword values ..."
 
     COUNTS = {"v": 3, "vx": 1, "vy": 1, "vz": 1, "omega": 3, "x": 1, "y": 1, "z": 1, "radius": 1,
-              "diameter": 1, "density": 1, "mass": 1, "type": 1, "quat": 4}
+              "diameter": 1, "density": 1, "mass": 1, "type": 1, "quat": 4, "shape": 1, "scale": 1, "seed": 1}
 
     def __call__(self, words):
         from .args import parse_types
@@ -250,9 +297,39 @@ class SetCommand(Command):
             sel = find_region(sim, ident).inside(atom.data["x"][:n])
         else:
             raise a.error(f"unknown set target '{what}' (atom, type, group or region)")
+        words = list(a.words)
+        for k in range(2, len(words) - 1):      # `quat random` takes one value
+            if words[k] == "quat" and words[k + 1] == "random":
+                words[k + 1:k + 2] = ["random"] * 4
+        a.words = words
         kw = a.keywords(2, self.COUNTS)
         d = atom.data
+        rows = np.flatnonzero(sel)
         for key, vals in kw.items():
+            if key == "shape":
+                scale = a.to_float(kw["scale"][0], "scale") if "scale" in kw else 1.0
+                if scale <= 0:
+                    raise a.error("scale must be > 0")
+                shape_command.shape_index(sim, vals[0])     # the same error on every rank
+                shape_command.assign(sim, rows, vals[0], scale)
+                continue
+            if key == "scale":
+                if "shape" not in kw:
+                    scale = a.to_float(vals[0], "scale")
+                    if scale <= 0:
+                        raise a.error("scale must be > 0")
+                    shape_command.assign(sim, rows, None, scale)
+                continue
+            if key == "seed":
+                continue
+            if key == "quat" and vals[0] == "random":
+                # the same stream on every rank: draw for all particles by id, keep the selected
+                rng = np.random.default_rng(a.to_int(kw["seed"][0], "seed") if "seed" in kw else 1)
+                tags = d["tag"][:n]
+                q = shape_command.random_quaternions(rng, int(sim.atom.max_tag) + 1)
+                d["quat"][:n][sel] = q[tags[sel]]
+                d["angmom"][:n][sel] = 0.0
+                continue
             f = [a.to_float(v, key) for v in vals]
             if key == "v":
                 d["v"][:n][sel] = f
@@ -268,15 +345,19 @@ class SetCommand(Command):
                 r = f[0] if key == "radius" else 0.5 * f[0]
                 if r <= 0:
                     raise a.error(f"{key} must be > 0")
-                rho = d["rmass"][:n][sel] / sphere_mass(d["radius"][:n][sel], 1.0)
-                d["radius"][:n][sel] = r
-                d["rmass"][:n][sel] = sphere_mass(r, 1.0) * rho
-                d["inertia"][:n][sel] = (0.4 * d["rmass"][:n][sel] * r * r)[:, None]
+                shaped = rows[d["shape"][rows] >= 0]
+                if len(shaped):
+                    shape_command.assign(sim, shaped, None, r / sim.shapes.radius[d["shape"][shaped]])
+                spheres = rows[d["shape"][rows] < 0]
+                rho = d["rmass"][spheres] / sphere_mass(d["radius"][spheres], 1.0)
+                d["radius"][spheres] = r
+                d["rmass"][spheres] = sphere_mass(r, 1.0) * rho
+                d["inertia"][spheres] = (0.4 * d["rmass"][spheres] * r * r)[:, None]
                 sim.neighbor.invalidate()
             elif key == "density":
                 if f[0] <= 0:
                     raise a.error("density must be > 0")
-                scale = f[0] / (d["rmass"][:n][sel] / sphere_mass(d["radius"][:n][sel], 1.0))
+                scale = f[0] / shape_command.particle_density(sim, rows)
                 d["rmass"][:n][sel] *= scale
                 d["inertia"][:n][sel] *= scale[:, None]
             elif key == "mass":
@@ -292,5 +373,8 @@ class SetCommand(Command):
                 d["type"][:n][sel] = t
             elif key == "quat":
                 q = np.array(f)
+                if not np.linalg.norm(q) > 0:
+                    raise a.error("quat must not be zero")
                 d["quat"][:n][sel] = q / np.linalg.norm(q)
+                d["angmom"][:n][sel] = 0.0   # recomputed by the integrator from omega
         sim.print(f"Setting properties of {int(sim.comm.sum(int(sel.sum())))} particles")

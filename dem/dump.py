@@ -163,31 +163,59 @@ class Dump:
         return Frame(step, sim.update.time, sim.domain.lo, sim.domain.hi, arrays)
 
     # ----- shaped particles (hook) ----------------------------------------------------------------
-    def posed_mesh(self, shape, position, quat):
+    def posed_mesh(self, shape, position, quat, scale=1.0):
         """World-frame surface of one shaped particle: ``(vertices (m, 3) float, faces (k, 3) int)`` or
         None to draw the particle as a point with its radius.
 
-        Hook for shaped particles: not implemented yet (the shape library ``sim.shapes`` does not exist).
-        It will look up the body-frame mesh of shape index ``shape`` (>= 0), rotate it by the unit
-        quaternion ``quat`` (w, x, y, z) and translate it to ``position``."""
-        return None
+        The body-frame mesh of row ``shape`` (>= 0) of ``sim.shapes`` (cached per shape), scaled by
+        ``scale`` (the particle's radius over the shape's bounding radius), rotated by the unit
+        quaternion ``quat`` (w, x, y, z) and translated to ``position`` (the centre of mass)."""
+        table = getattr(self.sim, "shapes", None)
+        if table is None or not hasattr(table, "mesh"):
+            return None
+        from .thermo import quat_to_matrix
+        verts, faces = table.mesh(int(shape))
+        rot = quat_to_matrix(np.asarray(quat, dtype=np.float64).reshape(1, 4))[0]
+        return (scale * verts) @ rot.T + np.asarray(position, dtype=np.float64), faces
 
     def particle_meshes(self, frame):
         """{particle index in frame: (vertices, faces)} for the shaped particles that have a mesh. Empty
-        while ``sim.shapes`` does not exist, or when shape/orientation were not gathered."""
-        if getattr(self.sim, "shapes", None) is None:
+        while no shape is defined (``sim.shapes``), or when shape/orientation were not gathered."""
+        table = getattr(self.sim, "shapes", None)
+        if table is None:
             return {}
         arrays = frame.arrays
         if "shape" not in arrays or "orientation" not in arrays:
             return {}
+        bounding = getattr(table, "radius", None)
+        radius = arrays.get("radius")
         meshes = {}
         for i in np.flatnonzero(arrays["shape"] >= 0):
-            mesh = self.posed_mesh(int(arrays["shape"][i]), arrays["position"][i], arrays["orientation"][i])
+            s = int(arrays["shape"][i])
+            args = (s, arrays["position"][i], arrays["orientation"][i])
+            if bounding is not None and radius is not None:
+                args += (float(radius[i]) / float(bounding[s]),)
+            mesh = self.posed_mesh(*args)
             if mesh is not None:
                 verts = np.asarray(mesh[0], dtype=np.float64).reshape(-1, 3)
                 faces = np.asarray(mesh[1], dtype=np.int64)
                 meshes[int(i)] = (verts, faces)
         return meshes
+
+    def surface(self, frame):
+        """All posed meshes of a frame joined: (points (p, 3), triangles (t, 3) int64, owner (p,) particle
+        index in the frame), or None when no particle has a mesh."""
+        meshes = self.particle_meshes(frame)
+        if not meshes:
+            return None
+        points, tris, owner, n = [], [], [], 0
+        for i in sorted(meshes):
+            verts, faces = meshes[i]
+            points.append(verts)
+            tris.append(faces + n)
+            owner.append(np.full(len(verts), i, dtype=np.int64))
+            n += len(verts)
+        return np.concatenate(points), np.concatenate(tris).astype(np.int64), np.concatenate(owner)
 
     # ----- writing --------------------------------------------------------------------------------
     def write(self, step):

@@ -82,6 +82,31 @@ def xdmf_grid(h5name, step, time, datasets):
     return "\n".join(lines) + "\n"
 
 
+def xdmf_surface(h5name, step, time, particle_grid, npoints, ntris):
+    """XDMF of a frame with posed particle surfaces: a spatial collection of the particle grid (points)
+    and a triangle grid of the surfaces (point attribute ``id``: the particle of each vertex)."""
+    base = f"/frames/{frame_name(step)}/surface"
+    inner = "\n".join("  " + line for line in particle_grid.rstrip("\n").split("\n"))
+    inner = inner.replace(f'<Grid Name="step_{int(step)}"', '<Grid Name="particles"', 1)
+    inner = "\n".join(line for line in inner.split("\n") if "<Time " not in line)
+    lines = [f'      <Grid Name="step_{int(step)}" GridType="Collection" CollectionType="Spatial">',
+             f'        <Time Value="{float(time)!r}"/>',
+             inner,
+             '        <Grid Name="surfaces" GridType="Uniform">',
+             f'          <Topology TopologyType="Triangle" NumberOfElements="{ntris}">',
+             "            " + _data_item(h5name, f"{base}/triangles", (ntris, 3), np.int64),
+             "          </Topology>",
+             '          <Geometry GeometryType="XYZ">',
+             "            " + _data_item(h5name, f"{base}/points", (npoints, 3), np.float64),
+             "          </Geometry>",
+             '          <Attribute Name="id" AttributeType="Scalar" Center="Node">',
+             "            " + _data_item(h5name, f"{base}/id", (npoints,), np.int64),
+             "          </Attribute>",
+             "        </Grid>",
+             "      </Grid>"]
+    return "\n".join(lines) + "\n"
+
+
 def xdmf_document(grids, name="particles"):
     """The whole XDMF file: a temporal collection of the given frame grids (texts of xdmf_grid)."""
     head = ('<?xml version="1.0" encoding="utf-8"?>\n'
@@ -94,7 +119,7 @@ def xdmf_document(grids, name="particles"):
 
 
 class DumpH5(Dump):
-    """dump ID group-ID h5 N file.h5 [fields name ...]
+    """dump ID group-ID h5 N file.h5 [fields name ...] [surface yes|no]
 
     Writes every frame of the dump into ONE HDF5 file (h5py), and an XDMF sidecar ``file.xdmf`` (same
     folder, same name with the extension replaced) that ParaView opens as a time series of point sets
@@ -123,6 +148,25 @@ class DumpH5(Dump):
 
     Keyword ``fields`` limits the per-particle datasets (``position`` is always written); default: all.
 
+    Shaped particles (``shape`` command): the file also holds the shape table, rewritten when it
+    grows::
+
+        /shapes                attributes: count; one row per shape index (the ``shape`` dataset)
+            name         (s,)   str      names given by the ``shape`` command
+            kind         (s,)   int32    0 sphere 1 box 2 cylinder 3 cone 4 ellipsoid 5 superquadric
+                                         6 polyhedron;  kind_name (s,) str
+            params       (s,8)  float64  sizes of the kind (dem/shapes/_support.pyx), scale 1
+            crust, volume, bounding_radius (s,) float64;  inertia (s,3) principal moments / density
+            definition   (s,)   str      the shape command that made it
+            mesh_<k>/vertices (m,3), mesh_<k>/faces (t,3)   body-frame surface of shape k, scale 1
+
+    A particle's body is: mesh of ``shape`` x (``radius`` / bounding_radius[shape]) rotated by
+    ``orientation`` (body -> space) and moved to ``position``. With ``surface yes`` (the default when
+    shapes exist) each frame also stores that posed surface, ``surface/points`` (p,3),
+    ``surface/triangles`` (t,3) and ``surface/id`` (p,) (particle id of each vertex), and the XDMF
+    frame becomes a spatial collection of the points and a triangle grid: ParaView shows cubes as
+    cubes (color the surfaces by ``id``).
+
     The file is created at the first frame (a script that stops before its first run leaves no file;
     an existing file of that name is then replaced). It is opened for each frame and closed (flushed)
     right after: between frames it is complete, so it can be read while the run goes on (ParaView,
@@ -133,9 +177,11 @@ class DumpH5(Dump):
     """
 
     style = "h5"
-    keywords = {"fields": None}
+    keywords = {"fields": None, "surface": 1}
 
     def __init__(self, sim, did, group, every, path, args):
+        self.surfaces = True
+        self._nshapes = 0          # shape table rows written to the file
         super().__init__(sim, did, group, every, path, args)
         if "*" in self.path:
             raise DemError(f"dump {did}: dump h5 writes all frames into one file: no '*' in its name "
@@ -146,6 +192,49 @@ class DumpH5(Dump):
         self.xdmf_path = (root if ext else self.path) + ".xdmf"
         self._grids = {}          # step -> XDMF text of the frame (insertion order)
         self._created = False     # the file was created by this dump (later opens append)
+
+    def keyword(self, word, values):
+        if word == "surface":
+            if values[0] not in ("yes", "no"):
+                raise DemError(f"dump {self.id}: surface must be yes or no, got '{values[0]}'")
+            self.surfaces = values[0] == "yes"
+        else:
+            super().keyword(word, values)
+
+    def gathered_fields(self):
+        names = super().gathered_fields()
+        if self.surfaces and getattr(self.sim, "shapes", None) is not None:
+            names += [n for n in ("id", "shape", "orientation", "radius") if n not in names]
+        return names
+
+    def write_shapes(self, f):
+        """The shape table (see the class documentation), when it has rows not yet written."""
+        table = getattr(self.sim, "shapes", None)
+        if table is None or not hasattr(table, "names") or len(table) == self._nshapes:
+            return
+        from .shapes.base import KIND_NAMES
+        if "shapes" in f:
+            del f["shapes"]
+        g = f.create_group("shapes")
+        g.attrs["count"] = len(table)
+        strings = lambda xs: np.array([str(x).encode() for x in xs], dtype=object)
+        import h5py
+        text = h5py.string_dtype()
+        g.create_dataset("name", data=strings(table.names), dtype=text)
+        g.create_dataset("kind", data=table.kind)
+        g.create_dataset("kind_name", data=strings(KIND_NAMES.get(int(k), "?") for k in table.kind), dtype=text)
+        g.create_dataset("params", data=table.params)
+        g.create_dataset("crust", data=table.crust)
+        g.create_dataset("volume", data=table.volume)
+        g.create_dataset("bounding_radius", data=table.radius)
+        g.create_dataset("inertia", data=table.inertia)
+        g.create_dataset("definition", data=strings(" ".join(w) for w in table.definitions), dtype=text)
+        for k in range(len(table)):
+            verts, faces = table.mesh(k)
+            m = g.create_group(f"mesh_{k}")
+            m.create_dataset("vertices", data=verts)
+            m.create_dataset("faces", data=faces)
+        self._nshapes = len(table)
 
     # ----- files ----------------------------------------------------------------------------------
     def _open(self):
@@ -175,6 +264,7 @@ class DumpH5(Dump):
             f.attrs["units"] = str(getattr(self.sim, "units", ""))
             f.require_group("frames")
             self._created = True
+            self._nshapes = 0
         return f
 
     def write_frame(self, frame):
@@ -194,6 +284,19 @@ class DumpH5(Dump):
                 data = frame.arrays[field]
                 g.create_dataset(field, data=data)
                 datasets[field] = (data.shape, data.dtype)
+            self.write_shapes(f)
+            surf = self.surface(frame) if self.surfaces else None
+            if surf is not None:
+                points, tris, owner = surf
+                ids = frame.arrays["id"][owner] if "id" in frame.arrays else owner
+                s = g.create_group("surface")
+                s.create_dataset("points", data=points)
+                s.create_dataset("triangles", data=tris)
+                s.create_dataset("id", data=np.asarray(ids, dtype=np.int64))
         self._grids.pop(frame.step, None)
-        self._grids[frame.step] = xdmf_grid(os.path.basename(self.path), frame.step, frame.time, datasets)
+        h5name = os.path.basename(self.path)
+        grid = xdmf_grid(h5name, frame.step, frame.time, datasets)
+        if surf is not None:
+            grid = xdmf_surface(h5name, frame.step, frame.time, grid, len(surf[0]), len(surf[1]))
+        self._grids[frame.step] = grid
         atomic_write(self.xdmf_path, xdmf_document(self._grids.values(), name=str(self.id)))

@@ -70,6 +70,11 @@ class DumpVTK(Dump):
     filter (Sphere, Scale Array ``radius``, scale factor 2). Field data: ``TimeValue``, ``step``,
     ``box_lo``, ``box_hi``.
 
+    Shaped particles (``shape`` command) are written as their true surface instead: the triangles of
+    the posed, scaled mesh of their shape (cells VTK_TRIANGLE), every vertex carrying the particle's
+    point data (color by ``id`` or ``velocity``); plain spheres stay points. ParaView and OVITO then show
+    cubes as cubes with no glyph filter (for the spheres of a mixture, glyph the VTK_VERTEX cells).
+
     A ``.pvd`` collection listing every frame with its time is rewritten after each frame; open it in
     ParaView to get the time series with the right times. Default name: the file name without ``*`` and
     the separator before it (``out/grains_*.vtu`` gives ``out/grains.pvd``; ``*.vtu`` gives ``ID.pvd``).
@@ -129,7 +134,7 @@ class DumpVTK(Dump):
     def gathered_fields(self):
         names = super().gathered_fields()
         if getattr(self.sim, "shapes", None) is not None:      # to pose the meshes of shaped particles
-            names += [n for n in ("shape", "orientation") if n not in names]
+            names += [n for n in ("shape", "orientation", "radius") if n not in names]
         return names
 
     # ----- geometry -------------------------------------------------------------------------------

@@ -1,7 +1,82 @@
 # cython: language_level=3
-"""Kernels of the fixes: planar walls (shared Grains3D law, m_ij = m_i against a wall) and gravity."""
+"""Kernels of the fixes: planar walls (shared Grains3D law, m_ij = m_i against a wall) and gravity.
+
+Shaped particles meet a plane through their support function: the deepest point of the (scaled) body
+along the inward wall normal n is s(-n); overlap = its depth below the plane, contact point midway in the
+overlap, lever from the centre of mass to that point. The true (sharp) body is used: a plane needs no
+crust. Spheres keep the analytic path.
+
+`centroid` points: the overlap is the same, but the contact point is the centroid of the body's
+candidate points below the plane weighted by their depth (vertices of boxes and polyhedra, the deepest
+rim point of each end disc of a cylinder, apex and base rim point of a cone; smooth bodies have one):
+a face or an edge lying on the wall gets its middle instead of one arbitrary corner, and the point
+moves continuously as the body tilts (a single corner below the plane is the deepest point again)."""
+cimport numpy as cnp
 from libc.math cimport sqrt
 from dem_contact.law cimport hooke
+from dem.shapes._support cimport ShapeRef, quat_to_rot, support_world
+
+ctypedef cnp.int64_t i64
+
+
+cdef inline void _accumulate(const double* R, const double* x, const double* q, int a, double side,
+                             double pos, double tol, double* acc, double* wsum) noexcept nogil:
+    """Add body point q (posed by R, x) weighted by its depth below the plane + tol, if positive (tol, a
+    round-off margin, makes points level with the deepest one count alike when the overlap starts)."""
+    cdef double w0 = R[0] * q[0] + R[1] * q[1] + R[2] * q[2] + x[0]
+    cdef double w1 = R[3] * q[0] + R[4] * q[1] + R[5] * q[2] + x[1]
+    cdef double w2 = R[6] * q[0] + R[7] * q[1] + R[8] * q[2] + x[2]
+    cdef double depth = tol - side * ((w0 if a == 0 else (w1 if a == 1 else w2)) - pos)
+    if depth > 0.0:
+        acc[0] += depth * w0
+        acc[1] += depth * w1
+        acc[2] += depth * w2
+        wsum[0] += depth
+
+
+cdef inline void _centroid(const ShapeRef* S, const double* R, const double* x, const double* dn, int a,
+                           double side, double pos, double tol, double* c) noexcept nogil:
+    """Depth-weighted centroid of the candidate points below the plane (c is left unchanged for smooth
+    kinds or when none is found)."""
+    cdef double acc[3]
+    cdef double q[3]
+    cdef double wsum = 0.0, db0, db1, nxy
+    cdef int k, kind = S.kind
+    acc[0] = acc[1] = acc[2] = 0.0
+    if kind == 1:                                           # box: 8 corners
+        for k in range(8):
+            q[0] = S.params[0] if k & 1 else -S.params[0]
+            q[1] = S.params[1] if k & 2 else -S.params[1]
+            q[2] = S.params[2] if k & 4 else -S.params[2]
+            _accumulate(R, x, q, a, side, pos, tol, acc, &wsum)
+    elif kind == 6:                                         # polyhedron: vertices
+        for k in range(S.nverts):
+            _accumulate(R, x, &S.verts[3 * k], a, side, pos, tol, acc, &wsum)
+    elif kind == 2 or kind == 3:                            # cylinder / cone: rim points (+ apex)
+        db0 = R[0] * dn[0] + R[3] * dn[1] + R[6] * dn[2]
+        db1 = R[1] * dn[0] + R[4] * dn[1] + R[7] * dn[2]
+        nxy = sqrt(db0 * db0 + db1 * db1)
+        if nxy > 1e-12 * sqrt(db0 * db0 + db1 * db1 + (R[2] * dn[0] + R[5] * dn[1] + R[8] * dn[2]) ** 2):
+            q[0] = S.params[0] * db0 / nxy
+            q[1] = S.params[0] * db1 / nxy
+        else:                                               # a disc face-on: its centre
+            q[0] = 0.0
+            q[1] = 0.0
+        if kind == 2:
+            q[2] = -S.params[1]
+            _accumulate(R, x, q, a, side, pos, tol, acc, &wsum)
+            q[2] = S.params[1]
+            _accumulate(R, x, q, a, side, pos, tol, acc, &wsum)
+        else:
+            q[2] = S.params[1]
+            _accumulate(R, x, q, a, side, pos, tol, acc, &wsum)
+            q[0] = 0.0
+            q[1] = 0.0
+            q[2] = S.params[2]
+            _accumulate(R, x, q, a, side, pos, tol, acc, &wsum)
+    if wsum > 0.0:
+        for k in range(3):
+            c[k] = acc[k] / wsum
 
 
 def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1] omega,
@@ -9,20 +84,90 @@ def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, 
                 const int[::1] type_, const int[::1] mask, int groupbit, int nlocal,
                 const int[::1] axis, const double[::1] position, const double[::1] side,
                 const double[:, :, ::1] coeff, double[:, ::1] xi, bint use_history, double dt, bint advance,
-                double[::1] stats):
+                double[::1] stats, const double[:, ::1] quat, const int[::1] shape, const int[::1] is_sphere,
+                const int[::1] skind, const double[:, ::1] sparams, const i64[::1] svoff,
+                const int[::1] snv, const double[:, ::1] verts, const double[::1] srad, bint centroid=False):
     """Walls w: the plane axis[w] = position[w], particles on the side where side[w] * (x - position) > 0.
     xi holds 3 history values per wall per particle. stats: [contacts, max overlap / diameter, elastic
-    energy]."""
-    cdef int i, w, d, a, nw = axis.shape[0], ncont = 0
-    cdef double gap, delta, ci, ov, maxov = 0.0, energy = 0.0
+    energy]. Shape table arrays (body, not core): see dem.shape_command.SimShapes.kernel_arrays.
+    centroid: contact points of shaped particles by the depth-weighted centroid (module docstring)."""
+    cdef int i, w, d, a, s, nw = axis.shape[0], ncont = 0
+    cdef double gap, delta, ci, ov, maxov = 0.0, energy = 0.0, sc
     cdef double n[3]
     cdef double vr[3]
     cdef double fn[3]
     cdef double ft[3]
+    cdef double dn[3]
+    cdef double p[3]
+    cdef double l[3]
+    cdef double F[3]
+    cdef double R[9]
+    cdef ShapeRef S
+    cdef bint posed
     cdef double* h
     with nogil:
         for i in range(nlocal):
             if not (mask[i] & groupbit):
+                continue
+            s = shape[i]
+            if s >= 0 and not is_sphere[s]:
+                posed = False
+                for w in range(nw):
+                    a = axis[w]
+                    if side[w] * (x[i, a] - position[w]) >= radius[i]:     # bounding sphere clear
+                        if use_history and advance and (xi[i, 3 * w] != 0.0 or xi[i, 3 * w + 1] != 0.0
+                                                        or xi[i, 3 * w + 2] != 0.0):
+                            xi[i, 3 * w] = 0.0
+                            xi[i, 3 * w + 1] = 0.0
+                            xi[i, 3 * w + 2] = 0.0
+                        continue
+                    if not posed:
+                        sc = radius[i] / srad[s]
+                        S.kind = skind[s]
+                        S.params = &sparams[s, 0]
+                        S.nverts = snv[s]
+                        S.verts = &verts[svoff[s], 0]
+                        quat_to_rot(&quat[i, 0], R)
+                        for d in range(9):
+                            R[d] *= sc
+                        posed = True
+                    n[0] = 0.0
+                    n[1] = 0.0
+                    n[2] = 0.0
+                    n[a] = side[w]
+                    dn[0] = -n[0]
+                    dn[1] = -n[1]
+                    dn[2] = -n[2]
+                    support_world(&S, R, &x[i, 0], dn, p)      # deepest point towards the wall
+                    gap = side[w] * (p[a] - position[w])
+                    if gap >= 0.0:
+                        if use_history and advance and (xi[i, 3 * w] != 0.0 or xi[i, 3 * w + 1] != 0.0
+                                                        or xi[i, 3 * w + 2] != 0.0):
+                            xi[i, 3 * w] = 0.0
+                            xi[i, 3 * w + 1] = 0.0
+                            xi[i, 3 * w + 2] = 0.0
+                        continue
+                    delta = -gap
+                    ncont += 1
+                    ov = delta / (2.0 * radius[i])
+                    if ov > maxov:
+                        maxov = ov
+                    if centroid:
+                        _centroid(&S, R, &x[i, 0], dn, a, side[w], position[w], 1e-9 * radius[i], p)
+                    p[a] = position[w] - 0.5 * delta * side[w]    # contact point midway in the overlap
+                    for d in range(3):
+                        l[d] = p[d] - x[i, d]
+                    vr[0] = v[i, 0] + omega[i, 1] * l[2] - omega[i, 2] * l[1]
+                    vr[1] = v[i, 1] + omega[i, 2] * l[0] - omega[i, 0] * l[2]
+                    vr[2] = v[i, 2] + omega[i, 0] * l[1] - omega[i, 1] * l[0]
+                    h = &xi[i, 3 * w] if use_history else NULL
+                    energy += hooke(&coeff[w, type_[i], 0], delta, n, vr, rmass[i], h, dt, advance, fn, ft)
+                    for d in range(3):
+                        F[d] = fn[d] + ft[d]
+                        f[i, d] += F[d]
+                    torque[i, 0] += l[1] * F[2] - l[2] * F[1]
+                    torque[i, 1] += l[2] * F[0] - l[0] * F[2]
+                    torque[i, 2] += l[0] * F[1] - l[1] * F[0]
                 continue
             for w in range(nw):
                 a = axis[w]

@@ -2,6 +2,7 @@
 import numpy as np
 
 import dem_contact
+from dem import shape_command
 from dem.errors import DemError
 from dem.fix import Fix, Stage
 
@@ -10,11 +11,18 @@ from . import _kernels
 
 class FixWallPlane(Fix):
     """fix ID group wall/plane xplane|yplane|zplane LO HI [...] [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
+        [point deepest|centroid]
 
     Fixed planar walls. Each `xplane LO HI` adds a wall at x = LO facing +x and one at x = HI facing -x;
     NULL skips one (`zplane 0 NULL`: a floor only). Particles touching a wall feel the Grains3D law with
     the reduced mass m_ij = m_i (the wall is an obstacle of infinite mass) and their own tangential
     history per wall (kept per particle: it survives rebuilds, restarts and migration).
+    Shaped particles (`shape` command) touch a wall at the deepest point of their body along the wall
+    normal (support function): one contact point, lever from the centre of mass to it. `point deepest`
+    (default, Grains3D) puts it at that deepest point; `point centroid` at the depth-weighted centroid of
+    the body's vertices (rim points for cylinders and cones) below the wall, with the same overlap: a
+    face or edge lying on the wall then pushes at its middle (no spurious torque from one arbitrary
+    corner), a single corner below the wall is the deepest point again.
     Coefficients: given here for every type, or, when left out, those of each type with itself from
     pair_coeff. Example: `fix floor all wall/plane zplane 0.0 NULL kn 1000 en 0.5 mu 0.5 ks 285.7`."""
 
@@ -44,6 +52,15 @@ class FixWallPlane(Fix):
             i += 3
         if not axes:
             raise DemError(f"fix {fid} wall/plane: no wall given; usage: {usage}")
+        rest = list(args[i:])
+        self.centroid = False
+        if "point" in rest:
+            k = rest.index("point")
+            if k + 1 >= len(rest) or rest[k + 1] not in ("deepest", "centroid"):
+                raise DemError(f"fix {fid} wall/plane: point must be deepest or centroid")
+            self.centroid = rest[k + 1] == "centroid"
+            del rest[k:k + 2]
+        args = args[:i] + rest
         self.axis = np.array(axes, dtype=np.int32)
         self.position = np.array(positions)
         self.side = np.array(sides)
@@ -73,6 +90,7 @@ class FixWallPlane(Fix):
         self.use_history = bool(np.any(table[:, 1:, dem_contact.KS] > 0))
         if self.use_history:
             self.sim.atom.add_field(f"fix_{self.id}_xi", (3 * nw,), np.float64, 0.0)
+        self.shape_arrays = shape_command.kernel_arrays(sim)
 
     def post_force(self):
         self.compute(True)
@@ -81,10 +99,12 @@ class FixWallPlane(Fix):
         sim = self.sim
         a = sim.atom.data
         xi = a[f"fix_{self.id}_xi"] if self.use_history else np.zeros((1, 3))
+        t = self.shape_arrays
         _kernels.plane_walls(a["x"], a["v"], a["omega"], a["f"], a["torque"], a["radius"], a["rmass"],
-                           a["type"], a["mask"], int(self.groupbit), sim.atom.nlocal, self.axis,
-                           self.position, self.side, self.table, xi, self.use_history, sim.update.dt,
-                           advance, self.stats)
+                             a["type"], a["mask"], int(self.groupbit), sim.atom.nlocal, self.axis,
+                             self.position, self.side, self.table, xi, self.use_history, sim.update.dt,
+                             advance, self.stats, a["quat"], a["shape"], t["is_sphere"], t["kind"],
+                             t["params"], t["voff"], t["nv"], t["verts"], t["radius"], self.centroid)
         self.ncontacts = int(self.stats[0])
         self.max_overlap = float(self.stats[1])
         self.energy = float(self.stats[2])

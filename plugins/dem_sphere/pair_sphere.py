@@ -1,16 +1,15 @@
 """pair_style sphere: spheres with the Grains3D contact law."""
 import numpy as np
 
-import dem_contact
-from dem.args import parse_types
 from dem.errors import DemError
 from dem.history import History
 from dem.pair import Pair
+from dem_contact.pair_coeffs import PairCoefficients
 
 from . import _pair_sphere
 
 
-class PairSphere(Pair):
+class PairSphere(PairCoefficients, Pair):
     """pair_style sphere
 
     pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [ks KS] [mu_roll MUR]
@@ -36,37 +35,17 @@ class PairSphere(Pair):
         if args:
             raise DemError(f"pair_style sphere takes no arguments (coefficients go in pair_coeff), got "
                            f"{' '.join(args)}")
-        nt = sim.atom.ntypes
-        self.table = np.zeros((nt + 1, nt + 1, dem_contact.NCOEFF))
-        self.set = np.zeros((nt + 1, nt + 1), dtype=bool)
+        self.init_coefficients()
         self.history = None
         self.stats = np.zeros(3)
         self.worst = np.zeros(2, dtype=np.int64)
 
-    def coeff(self, words):
-        if len(words) < 2:
-            raise DemError("pair_coeff needs: pair_coeff I J kn KN en EN [mu ..] [gamma_t ..] [ks ..] [mu_roll ..]")
-        nt = self.sim.atom.ntypes
-        ti = parse_types(words[0], nt, "type I")
-        tj = parse_types(words[1], nt, "type J")
-        c = dem_contact.parse(words[2:], "pair_coeff")
-        r = dem_contact.row(c)
-        for a in ti:
-            for b in tj:
-                self.table[a, b] = r
-                self.table[b, a] = r
-                self.set[a, b] = self.set[b, a] = True
-
-    def coefficients(self, ti, tj):
-        return self.table[ti, tj]
-
     def init(self):
-        nt = self.sim.atom.ntypes
-        missing = [(a, b) for a in range(1, nt + 1) for b in range(a, nt + 1) if not self.set[a, b]]
-        if missing:
-            a, b = missing[0]
-            raise DemError(f"pair_coeff missing for types {a} {b}")
-        need_history = bool(np.any(self.table[1:, 1:, dem_contact.KS] > 0))
+        need_history = self.check_coefficients()
+        atom = self.sim.atom
+        if self.sim.comm.any(bool(np.any(atom.data["shape"][:atom.nlocal] >= 0))):
+            raise DemError("pair_style sphere treats every particle as a sphere, but some particles have a "
+                           "shape", hint="use pair_style convex/gjk for shaped particles")
         if need_history and self.history is None:
             self.history = History(self.sim, "pair_xi", 3)
             self.sim.neighbor.histories.append(self.history)
@@ -85,18 +64,3 @@ class PairSphere(Pair):
         self.energy = float(self.stats[2])
         if self.ncontacts:
             self.max_overlap_tags = (int(a["tag"][self.worst[0]]), int(a["tag"][self.worst[1]]))
-
-    def min_contact_time(self):
-        """Shortest T_c over type pairs, with the lightest particles present."""
-        atom = self.sim.atom
-        n = atom.nlocal
-        tmin = np.inf
-        types = atom.data["type"][:n]
-        masses = {t: float(atom.data["rmass"][:n][types == t].min()) for t in np.unique(types)}
-        for ta, ma in masses.items():
-            for tb, mb in masses.items():
-                r = self.table[ta, tb]
-                t = dem_contact.contact_time(r[dem_contact.KN], r[dem_contact.EN], ma * mb / (ma + mb))
-                tmin = min(tmin, t)
-        tmin = self.sim.comm.min(tmin)     # collective: every rank, with or without particles
-        return tmin if np.isfinite(tmin) else None

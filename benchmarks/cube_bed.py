@@ -1,0 +1,127 @@
+"""Cost of convex particles: a dense bed of cubes (pair_style convex/gjk, fix nve/shape) against the same
+bed made of spheres of equal volume (pair_style sphere, fix nve/sphere), one core. Grains3D reports about
+5x for cubes over spheres (Part III sec 2.5); the goal here is <= 3x.
+
+    python benchmarks/cube_bed.py [--N 1000] [--steps 5000] [--repeats 3] [--settle 80000]
+
+Both beds are built alike: N particles of volume (2.418 mm)^3 (the cubes of Part III sec 4.1: equal
+volume to a sphere of radius 1.5 mm) at the same random positions (non-overlapping bounding spheres of
+the cubes, 20 % of the volume; cubes randomly oriented), in a box periodic in x and y (17.5 edges wide
+for N = 1000) with a floor, kn = 1e5 N/m, en = 0.73, mu = 0.55, density 2500, dt = 2e-6 s (Table 5/6),
+then settled under gravity for --settle steps (written to a restart once). The settled beds are timed for --steps steps, alternating cube and sphere runs; the
+figure is the median of the paired ratios of the loop time per particle-step (and of the pair stage
+alone). The separating-axis pre-test and the GJK calls per step are reported too.
+"""
+import argparse
+import os
+import statistics
+import sys
+import tempfile
+
+import dem
+
+A = 0.002418          # cube edge (m): volume of a sphere of radius 1.5 mm
+LAW = "kn 1e5 en 0.73 mu 0.55"
+
+
+
+
+def styles(kind):
+    if kind == "cube":
+        return "pair_style convex/gjk", "fix integ all nve/shape"
+    return "pair_style sphere", "fix integ all nve/sphere"
+
+
+def build(kind, n, settle, path):
+    """Random bounding spheres (the same positions for both kinds: the spheres are made with the cubes'
+    bounding radius, then shrunk to the volume of a cube), settled under gravity."""
+    import math
+    rb = A * math.sqrt(3.0) / 2.0                          # bounding radius of the cube
+    rs = A * (3.0 / (4.0 * math.pi)) ** (1.0 / 3.0)        # sphere of the cube's volume
+    L = 17.5 * A * (n / 1000.0) ** (1.0 / 3.0)
+    H = n * 4.0 / 3.0 * math.pi * rb ** 3 / (0.2 * L * L)   # bounding spheres at 20 % volume fraction
+    if kind == "cube":
+        make = f"create_atoms 1 random {n} 4821 fill shape c density 2500 quat random"
+    else:
+        make = f"create_atoms 1 random {n} 4821 fill radius {rb} density 2500\n        set group all radius {rs}"
+    pair, integ = styles(kind)
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+        boundary p p f
+        region box block 0 {L} 0 {L} 0 {H + 2 * A}
+        create_box 1 box
+        shape c cube {A}
+        region fill block 0 {L} 0 {L} {A} {H + A}
+        {make}
+        {pair}
+        pair_coeff * * {LAW}
+        {integ}
+        fix g all gravity 9.81 vector 0 0 -1
+        fix floor all wall/plane zplane 0 NULL {LAW}
+        timestep 2e-6
+        thermo 0
+        run {settle}
+        write_restart {path}
+    """)
+    return sim.atom.natoms
+
+
+def timed(kind, path, steps):
+    pair, integ = styles(kind)
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+        shape c cube {A}
+        read_restart {path}
+        {pair}
+        pair_coeff * * {LAW}
+        {integ}
+        fix g all gravity 9.81 vector 0 0 -1
+        fix floor all wall/plane zplane 0 NULL {LAW}
+        thermo 0
+    """)
+    sim.run(steps)
+    up = sim.update
+    loop = sum(up.timers.values())
+    n = sim.atom.natoms
+    extra = {}
+    if kind == "cube":
+        p = sim.pair
+        extra = {"gjk": p.ngjk / steps, "pretest": p.nsep / steps}
+    return {"loop": loop / (n * steps), "pair": up.timers["pair"] / (n * steps),
+            "integrate": up.timers["integrate"] / (n * steps), "contacts": sim.pair.ncontacts,
+            "ke": sim.thermo_keyword("ke"), **extra}
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--N", type=int, default=1000)
+    p.add_argument("--steps", type=int, default=5000)
+    p.add_argument("--repeats", type=int, default=3)
+    p.add_argument("--settle", type=int, default=150000)
+    p.add_argument("--dir", default=None, help="folder of the settled beds (default: a temporary one)")
+    a = p.parse_args(argv)
+    folder = a.dir or tempfile.mkdtemp(prefix="cube_bed_")
+    os.makedirs(folder, exist_ok=True)
+    paths = {}
+    for kind in ("cube", "sphere"):
+        paths[kind] = os.path.join(folder, f"{kind}_{a.N}_{a.settle}.restart")
+        if not os.path.exists(paths[kind]):
+            print(f"settling the {kind} bed ({a.settle} steps)...", flush=True)
+            build(kind, a.N, a.settle, paths[kind])
+    ratios, pair_ratios = [], []
+    for r in range(a.repeats):
+        c = timed("cube", paths["cube"], a.steps)
+        s = timed("sphere", paths["sphere"], a.steps)
+        ratios.append(c["loop"] / s["loop"])
+        pair_ratios.append(c["pair"] / s["pair"])
+        print(f"run {r + 1}: cubes {c['loop'] * 1e6:.3f} us/particle-step (pair {c['pair'] * 1e6:.3f}, "
+              f"integrate {c['integrate'] * 1e6:.3f}; {c['contacts']} contacts, {c['gjk']:.0f} GJK calls "
+              f"and {c['pretest']:.0f} pre-test rejections per step), spheres {s['loop'] * 1e6:.3f} "
+              f"(pair {s['pair'] * 1e6:.3f}, integrate {s['integrate'] * 1e6:.3f}; {s['contacts']} "
+              f"contacts): ratio {ratios[-1]:.2f} (pair {pair_ratios[-1]:.2f})", flush=True)
+    print(f"cube bed / sphere bed, cost per particle-step: {statistics.median(ratios):.2f}x "
+          f"(pair stage alone {statistics.median(pair_ratios):.2f}x), N = {a.N}, median of {a.repeats}")
+
+
+if __name__ == "__main__":
+    sys.exit(main())

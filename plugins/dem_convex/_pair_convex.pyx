@@ -1,0 +1,233 @@
+# cython: language_level=3
+"""Contacts between convex particles (shape table rows) and spheres: bounding-sphere broad phase, then
+either the analytic sphere geometry (two spheres) or the Grains3D crust contact (dem/_gjk.pyx: GJK on the
+shrunk cores, EPA when the cores overlap), one contact point per pair, and the shared Grains3D law
+(dem_contact/law.pxd).
+
+A scaled body is handed to GJK as its unscaled shape with the rotation matrix multiplied by the scale s:
+the support point of s R K in direction d is s R s_K(R^T d) (support functions ignore the length of the
+direction), i.e. the support of the body scaled by s; its crust is s times the shape's crust. A sphere
+(shape -1, or a table sphere) is a point core with a crust equal to its radius: exact.
+
+History per pair (values[k, 0:6]): the tangential spring xi (3, when ks > 0) and the last core
+separation pa - pb (3), the GJK warm start."""
+cimport numpy as cnp
+from libc.math cimport sqrt, fabs
+from dem_contact.law cimport hooke
+from dem.shapes._support cimport ShapeRef, quat_to_rot, support_world
+from dem._gjk cimport crust_contact, CONTACT_NONE
+
+ctypedef cnp.int64_t i64
+
+cdef double POINT_PARAMS[8]
+POINT_PARAMS[:] = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+
+
+cdef inline void _pose(int i, int s, const double[::1] radius, const int[::1] is_sphere,
+                       const int[::1] core_kind, const double[:, ::1] core_params, const i64[::1] core_voff,
+                       const int[::1] core_nv, const double[::1] crust, const double[:, ::1] verts,
+                       const double[::1] srad, ShapeRef* ref, double* c) noexcept nogil:
+    """Core and crust of particle i (shape s); its scaled rotation is rot[i]."""
+    if s < 0 or is_sphere[s]:
+        ref.kind = 0          # SPHERE of radius 0: a point
+        ref.params = POINT_PARAMS
+        ref.nverts = 0
+        ref.verts = NULL
+        c[0] = radius[i]
+        return
+    ref.kind = core_kind[s]
+    ref.params = &core_params[s, 0]
+    ref.nverts = core_nv[s]
+    ref.verts = &verts[core_voff[s], 0]
+    c[0] = crust[s] * radius[i] / srad[s]
+
+
+cdef inline double _extent(const ShapeRef* ref, const double* R, const double* x, const double* u) noexcept nogil:
+    """Support value h(u) = max over the posed core of u.(p - x): closed form for boxes, cylinders and
+    points (the common cases of the pre-test), the support function otherwise."""
+    cdef double db0, db1, db2
+    cdef double dn[3]
+    cdef double sp[3]
+    if ref.kind == 0 and ref.params[0] == 0.0 and ref.params[7] == 0.0:
+        return 0.0                                     # a point (the core of a sphere particle)
+    if (ref.kind == 1 or ref.kind == 2) and ref.params[7] == 0.0:
+        db0 = R[0] * u[0] + R[3] * u[1] + R[6] * u[2]  # R^T u (R includes the scale)
+        db1 = R[1] * u[0] + R[4] * u[1] + R[7] * u[2]
+        db2 = R[2] * u[0] + R[5] * u[1] + R[8] * u[2]
+        if ref.kind == 1:
+            return ref.params[0] * fabs(db0) + ref.params[1] * fabs(db1) + ref.params[2] * fabs(db2)
+        return ref.params[0] * sqrt(db0 * db0 + db1 * db1) + ref.params[1] * fabs(db2)
+    support_world(ref, R, x, u, sp)
+    return u[0] * (sp[0] - x[0]) + u[1] * (sp[1] - x[1]) + u[2] * (sp[2] - x[2])
+
+
+def rotations(const double[:, ::1] quat, const double[::1] radius, const int[::1] shape,
+              const int[::1] is_sphere, const double[::1] srad, int nall, double[:, ::1] rot):
+    """rot[i] = scale_i R(quat_i), row-major, for the shaped particles (identity for spheres): computed
+    once per step, used by every pair of the particle."""
+    cdef int i, k, s
+    cdef double sc
+    with nogil:
+        for i in range(nall):
+            s = shape[i]
+            if s < 0 or is_sphere[s]:
+                for k in range(9):
+                    rot[i, k] = 0.0
+                rot[i, 0] = rot[i, 4] = rot[i, 8] = 1.0
+                continue
+            sc = radius[i] / srad[s]
+            quat_to_rot(&quat[i, 0], &rot[i, 0])
+            for k in range(9):
+                rot[i, k] *= sc
+
+
+def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1] omega,
+            double[:, ::1] f, double[:, ::1] torque, const double[:, ::1] rot, const double[::1] radius,
+            const double[::1] rmass, const int[::1] type_, const int[::1] shape, int nlocal,
+            const i64[::1] offsets, const int[::1] neigh, const double[:, :, ::1] coeff,
+            const int[::1] is_sphere, const int[::1] core_kind, const double[:, ::1] core_params,
+            const i64[::1] core_voff, const int[::1] core_nv, const double[::1] crust,
+            const double[:, ::1] verts, const double[::1] srad,
+            double[:, ::1] hist, bint use_xi, double tol, double dt, bint advance,
+            double[::1] stats, i64[::1] worst):
+    """Adds contact forces and torques to f and torque (owned and ghost rows). stats receives
+    [contacts, max overlap / smaller bounding diameter, elastic energy, GJK calls, EPA/fallback contacts,
+    pairs rejected by the separating-axis pre-test]; worst the (i, j) of the largest overlap.
+
+    Pre-test: before GJK, the bodies are projected on the last separation direction (the warm start, or
+    the line of centres): a gap at least crust_i + crust_j there proves there is no contact (most pairs
+    of a dense bed whose bounding spheres overlap are apart); costs two support points."""
+    cdef int i, j, k, d, si, sj, code, ncont = 0, ngjk = 0, nepa = 0
+    cdef double dx[3]
+    cdef double n[3]
+    cdef double p[3]
+    cdef double li[3]
+    cdef double lj[3]
+    cdef double vr[3]
+    cdef double fn[3]
+    cdef double ft[3]
+    cdef double F[3]
+    cdef double wr[3]
+    cdef double g[3]
+    cdef double u[3]
+    cdef double sb[3]
+    cdef double r2, r, rsum, delta, meff, ca, cb, energy = 0.0, ov, maxov = 0.0, fnmag, wmag, mr, rmin, gn
+    cdef int nsep = 0
+    cdef bint sph_i, sph_j
+    cdef ShapeRef A, B
+    cdef const double* c
+    cdef double* h
+    with nogil:
+        for i in range(nlocal):
+            si = shape[i]
+            sph_i = si < 0 or is_sphere[si] != 0
+            for k in range(offsets[i], offsets[i + 1]):
+                j = neigh[k]
+                dx[0] = x[i, 0] - x[j, 0]
+                dx[1] = x[i, 1] - x[j, 1]
+                dx[2] = x[i, 2] - x[j, 2]
+                r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]
+                rsum = radius[i] + radius[j]
+                if r2 >= rsum * rsum:
+                    if use_xi and advance and (hist[k, 0] != 0.0 or hist[k, 1] != 0.0 or hist[k, 2] != 0.0):
+                        hist[k, 0] = 0.0
+                        hist[k, 1] = 0.0
+                        hist[k, 2] = 0.0
+                    continue
+                sj = shape[j]
+                sph_j = sj < 0 or is_sphere[sj] != 0
+                if sph_i and sph_j:
+                    r = sqrt(r2)
+                    for d in range(3):
+                        n[d] = dx[d] / r
+                    delta = rsum - r
+                    # contact point in the middle of the overlap
+                    for d in range(3):
+                        p[d] = x[i, d] - (radius[i] - 0.5 * delta) * n[d]
+                else:
+                    _pose(i, si, radius, is_sphere, core_kind, core_params, core_voff, core_nv, crust, verts,
+                          srad, &A, &ca)
+                    _pose(j, sj, radius, is_sphere, core_kind, core_params, core_voff, core_nv, crust, verts,
+                          srad, &B, &cb)
+                    for d in range(3):
+                        g[d] = hist[k, 3 + d]
+                    gn = g[0] * g[0] + g[1] * g[1] + g[2] * g[2]
+                    if gn > 0.0:
+                        gn = 1.0 / sqrt(gn)
+                        for d in range(3):
+                            u[d] = g[d] * gn
+                    else:
+                        gn = 1.0 / sqrt(r2)
+                        for d in range(3):
+                            u[d] = dx[d] * gn
+                    # separating-axis pre-test along u (from j to i): gap = min_A u.a - max_B u.b
+                    for d in range(3):
+                        sb[d] = -u[d]
+                    if (u[0] * dx[0] + u[1] * dx[1] + u[2] * dx[2] - _extent(&A, &rot[i, 0], &x[i, 0], sb)
+                            - _extent(&B, &rot[j, 0], &x[j, 0], u) >= ca + cb):
+                        nsep += 1
+                        if use_xi and advance and (hist[k, 0] != 0.0 or hist[k, 1] != 0.0 or hist[k, 2] != 0.0):
+                            hist[k, 0] = 0.0
+                            hist[k, 1] = 0.0
+                            hist[k, 2] = 0.0
+                        continue
+                    ngjk += 1
+                    code = crust_contact(&A, ca, &rot[i, 0], &x[i, 0], &B, cb, &rot[j, 0], &x[j, 0], tol, g,
+                                         &delta, n, p)
+                    if advance:          # a setup pass changes no history (warm start included)
+                        for d in range(3):
+                            hist[k, 3 + d] = g[d]
+                    if code == CONTACT_NONE:
+                        if use_xi and advance and (hist[k, 0] != 0.0 or hist[k, 1] != 0.0 or hist[k, 2] != 0.0):
+                            hist[k, 0] = 0.0
+                            hist[k, 1] = 0.0
+                            hist[k, 2] = 0.0
+                        continue
+                    if code > 1:
+                        nepa += 1
+                ncont += 1
+                rmin = radius[i] if radius[i] < radius[j] else radius[j]
+                ov = delta / (2.0 * rmin)
+                if ov > maxov:
+                    maxov = ov
+                    worst[0] = i
+                    worst[1] = j
+                meff = rmass[i] * rmass[j] / (rmass[i] + rmass[j])
+                for d in range(3):
+                    li[d] = p[d] - x[i, d]
+                    lj[d] = p[d] - x[j, d]
+                # velocity of i relative to j at the contact point
+                vr[0] = v[i, 0] + omega[i, 1] * li[2] - omega[i, 2] * li[1] - (v[j, 0] + omega[j, 1] * lj[2] - omega[j, 2] * lj[1])
+                vr[1] = v[i, 1] + omega[i, 2] * li[0] - omega[i, 0] * li[2] - (v[j, 1] + omega[j, 2] * lj[0] - omega[j, 0] * lj[2])
+                vr[2] = v[i, 2] + omega[i, 0] * li[1] - omega[i, 1] * li[0] - (v[j, 2] + omega[j, 0] * lj[1] - omega[j, 1] * lj[0])
+                c = &coeff[type_[i], type_[j], 0]
+                h = &hist[k, 0] if use_xi else NULL
+                energy += hooke(c, delta, n, vr, meff, h, dt, advance, fn, ft)
+                for d in range(3):
+                    F[d] = fn[d] + ft[d]
+                    f[i, d] += F[d]
+                    f[j, d] -= F[d]
+                # torques about each centre of mass: lever to the contact point
+                torque[i, 0] += li[1] * F[2] - li[2] * F[1]
+                torque[i, 1] += li[2] * F[0] - li[0] * F[2]
+                torque[i, 2] += li[0] * F[1] - li[1] * F[0]
+                torque[j, 0] -= lj[1] * F[2] - lj[2] * F[1]
+                torque[j, 1] -= lj[2] * F[0] - lj[0] * F[2]
+                torque[j, 2] -= lj[0] * F[1] - lj[1] * F[0]
+                if c[5] > 0.0 and sph_i and sph_j:
+                    # rolling resistance between spheres (as pair sphere); none for shaped bodies (Part III)
+                    for d in range(3):
+                        wr[d] = omega[i, d] - omega[j, d]
+                    wmag = sqrt(wr[0] * wr[0] + wr[1] * wr[1] + wr[2] * wr[2])
+                    if wmag > 0.0:
+                        fnmag = sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2])
+                        mr = c[5] * (radius[i] * radius[j] / rsum) * fnmag / wmag
+                        for d in range(3):
+                            torque[i, d] -= mr * wr[d]
+                            torque[j, d] += mr * wr[d]
+    stats[0] = ncont
+    stats[1] = maxov
+    stats[2] = energy
+    stats[3] = ngjk
+    stats[4] = nepa
+    stats[5] = nsep
