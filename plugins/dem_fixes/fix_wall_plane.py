@@ -1,7 +1,7 @@
 """fix wall/plane"""
 import numpy as np
 
-import dem_contact
+from dem_contact.wall_coeffs import WallCoefficients
 from dem import shape_command
 from dem.errors import DemError
 from dem.fix import Fix, Stage
@@ -9,7 +9,7 @@ from dem.fix import Fix, Stage
 from . import _kernels
 
 
-class FixWallPlane(Fix):
+class FixWallPlane(WallCoefficients, Fix):
     """fix ID group wall/plane xplane|yplane|zplane LO HI [...] [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
         [point deepest|centroid]
 
@@ -64,9 +64,7 @@ class FixWallPlane(Fix):
         self.axis = np.array(axes, dtype=np.int32)
         self.position = np.array(positions)
         self.side = np.array(sides)
-        self.law = dem_contact.parse(args[i:], f"fix {fid} wall/plane", required=()) if i < len(args) else {}
-        if self.law and not {"kn", "en"} <= set(self.law):
-            raise DemError(f"fix {fid} wall/plane: give both kn and en (or neither, to use pair_coeff I I)")
+        self.parse_law(args[i:])
         self.stats = np.zeros(3)
         self.ncontacts = 0
         self.max_overlap = 0.0
@@ -74,22 +72,7 @@ class FixWallPlane(Fix):
 
     def init(self):
         sim = self.sim
-        nt = sim.atom.ntypes
-        nw = len(self.axis)
-        table = np.zeros((nw, nt + 1, dem_contact.NCOEFF))
-        for t in range(1, nt + 1):
-            if self.law:
-                row = dem_contact.row(self.law)
-            else:
-                if sim.pair is None or not hasattr(sim.pair, "coefficients"):
-                    raise DemError(f"fix {self.id} wall/plane: no coefficients given and no pair style to "
-                                   f"take them from")
-                row = sim.pair.coefficients(t, t)
-            table[:, t] = row
-        self.table = table
-        self.use_history = bool(np.any(table[:, 1:, dem_contact.KS] > 0))
-        if self.use_history:
-            self.sim.atom.add_field(f"fix_{self.id}_xi", (3 * nw,), np.float64, 0.0)
+        self.init_table(len(self.axis))
         self.shape_arrays = shape_command.kernel_arrays(sim)
 
     def post_force(self):
@@ -98,7 +81,7 @@ class FixWallPlane(Fix):
     def compute(self, advance):
         sim = self.sim
         a = sim.atom.data
-        xi = a[f"fix_{self.id}_xi"] if self.use_history else np.zeros((1, 3))
+        xi = self.history()
         t = self.shape_arrays
         _kernels.plane_walls(a["x"], a["v"], a["omega"], a["f"], a["torque"], a["radius"], a["rmass"],
                              a["type"], a["mask"], int(self.groupbit), sim.atom.nlocal, self.axis,
@@ -109,21 +92,5 @@ class FixWallPlane(Fix):
         self.max_overlap = float(self.stats[1])
         self.energy = float(self.stats[2])
 
-    def min_contact_time(self):
-        atom = self.sim.atom
-        n = atom.nlocal
-        types = atom.data["type"][:n]
-        tmin = np.inf
-        for t in np.unique(types):
-            m = float(atom.data["rmass"][:n][types == t].min())
-            row = self.table[0, t]
-            tc = dem_contact.contact_time(row[dem_contact.KN], row[dem_contact.EN], m)
-            tmin = min(tmin, tc)
-        tmin = self.sim.comm.min(tmin)     # collective: every rank, with or without particles
-        return tmin if np.isfinite(tmin) else None
-
     def thermo(self):
         return {"contacts": self.sim.comm.sum(self.ncontacts)}
-
-    def unfix(self):
-        self.sim.atom.remove_field(f"fix_{self.id}_xi")

@@ -4,8 +4,8 @@ import math
 import numpy as np
 
 import dem_contact
+from dem_contact.wall_coeffs import WallCoefficients
 from dem.args import Args
-from dem.errors import DemError
 from dem.fix import Fix, Stage
 
 from . import _fix_wall_drum
@@ -13,7 +13,7 @@ from . import _fix_wall_drum
 RPM = 2.0 * math.pi / 60.0
 
 
-class FixWallDrum(Fix):
+class FixWallDrum(WallCoefficients, Fix):
     """fix ID group wall/drum AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate]
         [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
 
@@ -93,9 +93,7 @@ class FixWallDrum(Fix):
                 from dem.errors import did_you_mean
                 known = ["rpm", "omega", "ramp", "ends"] + list(dem_contact.KEYWORDS)
                 raise a.error(f"unknown keyword '{key}'{did_you_mean(key, known)}")
-        self.law = dem_contact.parse(law, f"fix {fid} wall/drum", required=()) if law else {}
-        if self.law and not {"kn", "en"} <= set(self.law):
-            raise DemError(f"fix {fid} wall/drum: give both kn and en (or neither, to use pair_coeff I I)")
+        self.parse_law(law)
         self.nwalls = 1 + (2 if self.ends else 0)
         self.angle = 0.0          # drum angle (rad), integrated exactly for the linear ramp
         self.elapsed = 0.0        # time since the fix was defined (s)
@@ -130,21 +128,7 @@ class FixWallDrum(Fix):
     # ----- stages ---------------------------------------------------------------------------------
     def init(self):
         sim = self.sim
-        nt = sim.atom.ntypes
-        table = np.zeros((self.nwalls, nt + 1, dem_contact.NCOEFF))
-        for t in range(1, nt + 1):
-            if self.law:
-                row = dem_contact.row(self.law)
-            else:
-                if sim.pair is None or not hasattr(sim.pair, "coefficients"):
-                    raise DemError(f"fix {self.id} wall/drum: no coefficients given and no pair style to "
-                                   f"take them from")
-                row = sim.pair.coefficients(t, t)
-            table[:, t] = row
-        self.table = table
-        self.use_history = bool(np.any(table[:, 1:, dem_contact.KS] > 0))
-        if self.use_history:
-            sim.atom.add_field(f"fix_{self.id}_xi", (3 * self.nwalls,), np.float64, 0.0)
+        self.init_table(self.nwalls)
         if self.ends is None and not sim.domain.periodic[self.axis]:
             sim.warning(f"fix {self.id} wall/drum: no end walls and the box is not periodic along "
                         f"{'xyz'[self.axis]}: particles can leave through the open ends")
@@ -155,7 +139,7 @@ class FixWallDrum(Fix):
     def compute(self, advance):
         sim = self.sim
         a = sim.atom.data
-        xi = a[f"fix_{self.id}_xi"] if self.use_history else np.zeros((1, 3))
+        xi = self.history()
         lo, hi = self.ends if self.ends else (0.0, 0.0)
         _fix_wall_drum.drum_walls(a["x"], a["v"], a["omega"], a["f"], a["torque"], a["radius"], a["rmass"],
                                   a["type"], a["mask"], int(self.groupbit), sim.atom.nlocal, self.axis,
@@ -174,18 +158,6 @@ class FixWallDrum(Fix):
         self.angle += 0.5 * (self.omega_at(t0) + self.omega_at(t0 + dt)) * dt
         self.elapsed = t0 + dt
 
-    def min_contact_time(self):
-        atom = self.sim.atom
-        n = atom.nlocal
-        types = atom.data["type"][:n]
-        tmin = np.inf
-        for t in np.unique(types):
-            m = float(atom.data["rmass"][:n][types == t].min())
-            row = self.table[0, t]
-            tmin = min(tmin, dem_contact.contact_time(row[dem_contact.KN], row[dem_contact.EN], m))
-        tmin = self.sim.comm.min(tmin)     # collective: every rank, with or without particles
-        return tmin if np.isfinite(tmin) else None
-
     def thermo(self):
         comm = self.sim.comm
         return {"contacts": comm.sum(self.ncontacts), "omega": self.omega, "angle": self.angle,
@@ -197,6 +169,3 @@ class FixWallDrum(Fix):
     def restore(self, state):
         self.angle = float(state.get("angle", 0.0))
         self.elapsed = float(state.get("elapsed", 0.0))
-
-    def unfix(self):
-        self.sim.atom.remove_field(f"fix_{self.id}_xi")

@@ -1,0 +1,58 @@
+"""Coefficients of the Grains3D law against walls, shared by every wall fix (wall/plane, wall/drum ...):
+given on the fix line for every type, or taken from `pair_coeff I I`; the per-particle tangential history
+the walls need; and the shortest contact time (m_ij = m_i against a wall)."""
+import numpy as np
+
+from dem.errors import DemError
+
+from . import EN, KN, KS, NCOEFF, contact_time, parse, row
+
+
+class WallCoefficients:
+    """Mixin of a wall Fix. `self.table[w, t]` is the coefficient row (law.pxd reads it) of wall w and
+    particle type t; `self.history()` the per-particle history array (3 values per wall) or a dummy."""
+
+    def parse_law(self, words):
+        what = f"fix {self.id} {self.style}"
+        law = parse(words, what, required=()) if words else {}
+        if law and not {"kn", "en"} <= set(law):
+            raise DemError(f"{what}: give both kn and en (or neither, to use pair_coeff I I)")
+        self.law = law
+
+    def init_table(self, nwalls):
+        sim = self.sim
+        nt = sim.atom.ntypes
+        self.table = np.zeros((nwalls, nt + 1, NCOEFF))
+        for t in range(1, nt + 1):
+            if self.law:
+                self.table[:, t] = row(self.law)
+            elif sim.pair is not None and hasattr(sim.pair, "coefficients"):
+                self.table[:, t] = sim.pair.coefficients(t, t)
+            else:
+                raise DemError(f"fix {self.id} {self.style}: no coefficients given and no pair style to "
+                               f"take them from")
+        self.use_history = bool(np.any(self.table[:, 1:, KS] > 0))
+        if self.use_history:
+            sim.atom.add_field(self.history_name, (3 * nwalls,), np.float64, 0.0)
+
+    @property
+    def history_name(self):
+        return f"fix_{self.id}_xi"
+
+    def history(self):
+        return self.sim.atom.data[self.history_name] if self.use_history else np.zeros((1, 3))
+
+    def min_contact_time(self):
+        atom = self.sim.atom
+        n = atom.nlocal
+        types = atom.data["type"][:n]
+        tmin = np.inf
+        for t in np.unique(types):
+            m = float(atom.data["rmass"][:n][types == t].min())
+            r = self.table[0, t]
+            tmin = min(tmin, contact_time(r[KN], r[EN], m))
+        tmin = self.sim.comm.min(tmin)     # collective: every rank, with or without particles
+        return tmin if np.isfinite(tmin) else None
+
+    def unfix(self):
+        self.sim.atom.remove_field(self.history_name)
