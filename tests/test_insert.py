@@ -254,3 +254,36 @@ def test_same_particles_on_one_and_two_ranks(tmp_path):
     np.testing.assert_array_equal(out[1]["r"], out[2]["r"])
     assert len(out[1]["tags"]) == 400
     np.testing.assert_allclose(out[1]["x"], out[2]["x"], rtol=0, atol=1e-9 * 0.002)
+
+
+def test_insert_shaped_particles():
+    """Cubes from the `shape` command: shape index, mass and inertia of the scaled cube, random
+    orientations, bounding spheres apart; they then fall and collide through pair_style convex/gjk."""
+    sim = dem.Simulation(screen=False)
+    sim.commands("""
+boundary p p f
+region box block 0 0.02 0 0.02 0 0.04
+create_box 1 box
+shape cube cube 0.002
+region top block EDGE EDGE EDGE EDGE 0.01 0.04
+pair_style convex/gjk
+pair_coeff * * kn 1e4 en 0.5 mu 0.3
+fix integrate all nve/shape
+fix gravity all gravity 9.81 vector 0 0 -1
+fix floor all wall/plane zplane 0 NULL
+fix ins all insert 11 top count 60 shape cube scale uniform 0.8 1.2 density 2500
+timestep 2e-6
+run 300
+""")
+    a = sim.atom
+    assert a.natoms == 60 and np.all(a.local("shape") == 0)     # every cube found room
+    scale = a.local("radius") / (0.002 * np.sqrt(3) / 2)      # bounding radius of a cube: half its diagonal
+    assert np.all((scale >= 0.8 - 1e-12) & (scale <= 1.2 + 1e-12))
+    m = 2500 * (0.002 * scale) ** 3
+    assert np.allclose(a.local("rmass"), m, rtol=1e-12)
+    assert np.allclose(a.local("inertia"), (m * (0.002 * scale) ** 2 / 6)[:, None], rtol=1e-10)
+    q = a.local("quat")
+    assert np.allclose(np.linalg.norm(q, axis=1), 1.0) and np.std(q[:, 0]) > 0.1
+    sim.run(2000)
+    assert sim.atom.natoms == 60
+    assert sim.thermo_keyword("maxov") < 0.01

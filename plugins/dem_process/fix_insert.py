@@ -1,11 +1,11 @@
 """fix insert"""
-import math
 
 import numpy as np
 
 from dem.commands import find_region
 from dem.errors import DemError, did_you_mean
 from dem.fix import Fix, Stage
+from dem.shape_command import ShapeTemplate, random_quaternions
 
 from . import _fix_insert
 from .templates import RadiusDistribution, SphereTemplate
@@ -38,14 +38,6 @@ def random_points(region, domain, rng, n, margin):
     return np.vstack(out)[:n]
 
 
-def random_quaternions(rng, n):
-    """Uniformly distributed unit quaternions (w, x, y, z) (Shoemake 1992)."""
-    u = rng.random((n, 3))
-    a, b = np.sqrt(1.0 - u[:, 0]), np.sqrt(u[:, 0])
-    t1, t2 = 2.0 * math.pi * u[:, 1], 2.0 * math.pi * u[:, 2]
-    return np.stack([b * np.cos(t2), a * np.sin(t1), a * np.cos(t1), b * np.sin(t2)], axis=1)
-
-
 class FixInsert(Fix):
     """fix ID group insert SEED REGION-ID count N | volfrac PHI [every M] [per K] [start STEP]
         [radius R | radius uniform RMIN RMAX | radius gaussian MEAN SD] [density RHO] [type T]
@@ -69,8 +61,10 @@ class FixInsert(Fix):
       (identity quaternion).
     * New particles join `all` and the fix group, get ids above the largest existing id.
     * Walls are not tested: keep the region clear of them (the margin keeps particles inside it).
-    * Shapes: the particles are drawn from templates (module `templates`: spheres now); a mixture of
-      shapes with number fractions will add templates, the overlap test using bounding spheres.
+    * Shapes: `shape NAME [scale S | scale uniform A B | scale gaussian M SD]` inserts particles of a
+      shape defined by the `shape` command (scale 1: the shape as defined), with random orientations;
+      the overlap test uses bounding spheres (conservative for non-spherical shapes). A mixture of
+      shapes with number fractions would add templates (module `templates`).
 
     The random stream depends only on SEED (every rank draws the same candidates; each rank tests its own
     particles and the verdicts are combined), so the packing is the same whatever the number of ranks.
@@ -86,9 +80,10 @@ class FixInsert(Fix):
     style = "insert"
     stages = Stage.PRE_EXCHANGE | Stage.END_OF_STEP
     usage = ("SEED REGION-ID count N | volfrac PHI [every M] [per K] [start STEP] [radius ...] "
-             "[density RHO] [type T] [v VX VY VZ] [omega WX WY WZ] [orient random|fixed]")
+             "[shape NAME [scale ...]] [density RHO] [type T] [v VX VY VZ] [omega WX WY WZ] "
+             "[orient random|fixed]")
     COUNTS = {"count": 1, "volfrac": 1, "every": 1, "per": 1, "start": 1, "radius": 1, "density": 1,
-              "type": 1, "v": 3, "omega": 3, "orient": 1}
+              "type": 1, "v": 3, "omega": 3, "orient": 1, "shape": 1, "scale": 1}
 
     def __init__(self, sim, fid, group, args):
         super().__init__(sim, fid, group, args)
@@ -123,8 +118,16 @@ class FixInsert(Fix):
         if orient not in ("random", "fixed"):
             raise DemError(f"{what}: orient must be random or fixed")
         self.random_orient = orient == "random"
-        # the templates (spheres only for now; a mixture would list several with number fractions)
-        self.templates = [SphereTemplate(RadiusDistribution(kw.get("radius", ["0.5"]), what), density)]
+        # the templates (one now; a mixture would list several with number fractions)
+        if "shape" in kw:
+            if "radius" in kw:
+                raise DemError(f"{what}: give the size of shaped particles with 'scale', not 'radius'")
+            scales = RadiusDistribution(kw.get("scale", ["1"]), f"{what} scale")
+            self.templates = [ShapeTemplate(sim, kw["shape"][0], scales, density)]
+        elif "scale" in kw:
+            raise DemError(f"{what}: 'scale' needs 'shape NAME' (spheres: radius)")
+        else:
+            self.templates = [SphereTemplate(RadiusDistribution(kw.get("radius", ["0.5"]), what), density)]
         self.rng = np.random.default_rng(self.seed)
         if "count" in kw:
             n = int(num("count"))
@@ -154,7 +157,7 @@ class FixInsert(Fix):
             if key not in self.COUNTS:
                 raise DemError(f"{what}: unknown keyword '{key}'{did_you_mean(key, self.COUNTS)}; usage: "
                                f"fix ID group insert {self.usage}")
-            n = RadiusDistribution.nwords(words, i) if key == "radius" else self.COUNTS[key]
+            n = RadiusDistribution.nwords(words, i) if key in ("radius", "scale") else self.COUNTS[key]
             if len(words[i + 1:i + 1 + n]) < n:
                 raise DemError(f"{what}: keyword '{key}' needs {n} value(s)")
             kw[key] = words[i + 1:i + 1 + n]
