@@ -35,6 +35,7 @@ def write_restart(sim, path):
                      "skin": nb.skin, "every": nb.every, "delay": nb.delay, "check": nb.check},
         "fixes": {f.id: f.state() for f in sim.modify.fixes},
         "pair": sim.pair.state() if sim.pair is not None else {},
+        "shapes": [list(w) for w in sim.shapes.definitions] if getattr(sim, "shapes", None) else [],
     }
     if sim.comm.nprocs > 1:
         state = sim.comm.gather_restart(state)
@@ -94,6 +95,9 @@ def read_restart(sim, path):
         nb.last_sort, nb.sort_every = ninfo["last_sort"], ninfo["sort_every"]
     else:
         nb.invalidate()
+    if state.get("shapes"):           # the shape table, unless the script defined it already
+        from .shape_command import rebuild
+        rebuild(sim, state["shapes"])
     sim.modify.restart_states = dict(state["fixes"])
     sim.restart_pair_state = state["pair"]
     sim.print(f"Read restart {path}: {atom.natoms} particles at step {up.ntimestep}")
@@ -117,8 +121,8 @@ class WriteRestart(Command):
 class ReadRestart(Command):
     """read_restart FILE
 
-    Restores box, particles (all fields, contact and wall histories), step, time, time step and neighbor
-    state; fixes defined afterwards with the same IDs take their saved state back. Pair style,
+    Restores box, particles (all fields, contact and wall histories), shapes, step, time, time step and
+    neighbor state; fixes defined afterwards with the same IDs take their saved state back. Pair style,
     coefficients and fixes are re-specified by the script, as in LAMMPS. With the same commands, the
     continued run is bitwise identical to the uninterrupted one on one rank."""
     style = "read_restart"
