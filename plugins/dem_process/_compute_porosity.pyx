@@ -8,6 +8,8 @@ import numpy as np
 cimport numpy as cnp
 from libc.math cimport floor
 
+from dem_process._cells cimport cell_of, dist2, stencil
+
 ctypedef cnp.int64_t i64
 
 
@@ -38,9 +40,10 @@ def voxel_count(const double[:, ::1] x, const double[::1] radius, const int[::1]
                 int iz_stride=1):
     """Grid points glo + (i + 1/2) h, i < npts, per axis, in the z-layers iz_start, iz_start + iz_stride,
     ... (ranks share the layers). Returns (points inside the region, solid ones)."""
-    cdef int i, d, q, last = -1, ox, oy, oz, cxx, cyy, czz, b
+    cdef int i, d, q, m, last = -1, b
+    cdef int cells[27]
     cdef i64 ix, iy, iz, kz, nz = (npts[2] - iz_start + iz_stride - 1) // iz_stride, inside = 0, solid = 0
-    cdef double rmax = 0.0, dd, r2
+    cdef double rmax = 0.0
     cdef double lo[3]
     cdef double hi[3]
     cdef double size[3]
@@ -118,58 +121,20 @@ def voxel_count(const double[:, ::1] x, const double[::1] radius, const int[::1]
                     if inreg != side_in:
                         continue
                     inside += 1
-                    if last >= 0:
-                        r2 = 0.0
-                        for d in range(3):
-                            dd = p[d] - x[last, d]
-                            if periodic[d]:
-                                dd -= prd[d] * floor(dd / prd[d] + 0.5)
-                            r2 += dd * dd
-                        if r2 < radius[last] * radius[last]:
-                            solid += 1
-                            continue
+                    if last >= 0 and dist2(p, &x[last, 0], &prd[0], &periodic[0]) < radius[last] * radius[last]:
+                        solid += 1
+                        continue
                     hit = False
                     for d in range(3):
-                        cc[d] = <int>floor((p[d] - lo[d]) / size[d])
-                        if cc[d] >= ncell[d]:
-                            cc[d] = ncell[d] - 1 if not periodic[d] else cc[d] % ncell[d]
-                        if cc[d] < 0:
-                            cc[d] = 0 if not periodic[d] else (cc[d] % ncell[d] + ncell[d]) % ncell[d]
-                    for oz in range(-1, 2):
-                        czz = cc[2] + oz
-                        if periodic[2]:
-                            czz = (czz + ncell[2]) % ncell[2]
-                        elif czz < 0 or czz >= ncell[2]:
-                            continue
-                        for oy in range(-1, 2):
-                            cyy = cc[1] + oy
-                            if periodic[1]:
-                                cyy = (cyy + ncell[1]) % ncell[1]
-                            elif cyy < 0 or cyy >= ncell[1]:
-                                continue
-                            for ox in range(-1, 2):
-                                cxx = cc[0] + ox
-                                if periodic[0]:
-                                    cxx = (cxx + ncell[0]) % ncell[0]
-                                elif cxx < 0 or cxx >= ncell[0]:
-                                    continue
-                                q = head[(czz * ncell[1] + cyy) * ncell[0] + cxx]
-                                while q >= 0:
-                                    r2 = 0.0
-                                    for d in range(3):
-                                        dd = p[d] - x[q, d]
-                                        if periodic[d]:
-                                            dd -= prd[d] * floor(dd / prd[d] + 0.5)
-                                        r2 += dd * dd
-                                    if r2 < radius[q] * radius[q]:
-                                        hit = True
-                                        last = q
-                                        break
-                                    q = nxt[q]
-                                if hit:
-                                    break
-                            if hit:
+                        cc[d] = cell_of(p[d], lo[d], size[d], ncell[d], periodic[d])
+                    for m in range(stencil(cc, ncell, &periodic[0], cells)):
+                        q = head[cells[m]]
+                        while q >= 0:
+                            if dist2(p, &x[q, 0], &prd[0], &periodic[0]) < radius[q] * radius[q]:
+                                hit = True
+                                last = q
                                 break
+                            q = nxt[q]
                         if hit:
                             break
                     if hit:

@@ -5,18 +5,7 @@ import numpy as np
 cimport numpy as cnp
 from libc.math cimport floor
 
-
-cdef inline int _cell1(double p, double lo, double size, int n, bint per) noexcept nogil:
-    cdef int c = <int>floor((p - lo) / size)
-    if per:
-        c = c % n
-        if c < 0:
-            c += n
-    elif c < 0:
-        c = 0
-    elif c >= n:
-        c = n - 1
-    return c
+from dem_process._cells cimport cell_of, dist2, stencil
 
 
 def clash(const double[:, ::1] ax, const double[::1] ar, int na,
@@ -26,14 +15,14 @@ def clash(const double[:, ::1] ax, const double[::1] ar, int na,
     """reject[k] = 1 for candidates k (cx, cr) that overlap one of the na particles (ax, ar); with
     `sequential`, candidates are taken in order and each one kept (reject[k] == 0 on return) also blocks
     the later ones. Candidates already rejected on entry are skipped. Returns the number kept."""
-    cdef int i, k, d, q, ox, oy, oz, cxx, cyy, czz, nkept = 0, nt = na + (nc if sequential else 0)
-    cdef double rmax = 0.0, dd, r2, s
+    cdef int i, k, d, q, m, nkept = 0, nt = na + (nc if sequential else 0)
+    cdef int cells[27]
+    cdef double rmax = 0.0, s
     cdef double lo[3]
     cdef double hi[3]
     cdef double size[3]
     cdef int ncell[3]
     cdef int cc[3]
-    cdef double dx[3]
     if nc == 0:
         return 0
     for i in range(na):
@@ -79,7 +68,7 @@ def clash(const double[:, ::1] ax, const double[::1] ar, int na,
         for i in range(na):
             for d in range(3):
                 px[np_, d] = ax[i, d]
-                cc[d] = _cell1(ax[i, d], lo[d], size[d], ncell[d], periodic[d])
+                cc[d] = cell_of(ax[i, d], lo[d], size[d], ncell[d], periodic[d])
             pr[np_] = ar[i]
             b = (cc[2] * ncell[1] + cc[1]) * ncell[0] + cc[0]
             nxt[np_] = head[b]
@@ -89,42 +78,15 @@ def clash(const double[:, ::1] ax, const double[::1] ar, int na,
             if reject[k]:
                 continue
             for d in range(3):
-                cc[d] = _cell1(cx[k, d], lo[d], size[d], ncell[d], periodic[d])
-            for oz in range(-1, 2):
-                czz = cc[2] + oz
-                if periodic[2]:
-                    czz = (czz + ncell[2]) % ncell[2]
-                elif czz < 0 or czz >= ncell[2]:
-                    continue
-                for oy in range(-1, 2):
-                    cyy = cc[1] + oy
-                    if periodic[1]:
-                        cyy = (cyy + ncell[1]) % ncell[1]
-                    elif cyy < 0 or cyy >= ncell[1]:
-                        continue
-                    for ox in range(-1, 2):
-                        cxx = cc[0] + ox
-                        if periodic[0]:
-                            cxx = (cxx + ncell[0]) % ncell[0]
-                        elif cxx < 0 or cxx >= ncell[0]:
-                            continue
-                        q = head[(czz * ncell[1] + cyy) * ncell[0] + cxx]
-                        while q >= 0:
-                            r2 = 0.0
-                            for d in range(3):
-                                dd = cx[k, d] - px[q, d]
-                                if periodic[d]:
-                                    dd -= prd[d] * floor(dd / prd[d] + 0.5)
-                                r2 += dd * dd
-                            s = cr[k] + pr[q]
-                            if r2 < s * s:
-                                reject[k] = 1
-                                break
-                            q = nxt[q]
-                        if reject[k]:
-                            break
-                    if reject[k]:
+                cc[d] = cell_of(cx[k, d], lo[d], size[d], ncell[d], periodic[d])
+            for m in range(stencil(cc, ncell, &periodic[0], cells)):
+                q = head[cells[m]]
+                while q >= 0:
+                    s = cr[k] + pr[q]
+                    if dist2(&cx[k, 0], &px[q, 0], &prd[0], &periodic[0]) < s * s:
+                        reject[k] = 1
                         break
+                    q = nxt[q]
                 if reject[k]:
                     break
             if reject[k]:
