@@ -52,3 +52,11 @@ cdef inline double hooke(const double* c, double delta, const double* n, const d
             for d in range(3):
                 xi[d] = -(ft[d] + dampt * vt[d]) / ks
     return 0.5 * kn * delta * delta
+
+
+cdef inline void forget(double* xi) noexcept nogil:
+    """A contact that ended forgets its tangential history (written only when set: saves bandwidth)."""
+    if xi[0] != 0.0 or xi[1] != 0.0 or xi[2] != 0.0:
+        xi[0] = 0.0
+        xi[1] = 0.0
+        xi[2] = 0.0

@@ -13,7 +13,7 @@ History per pair (values[k, 0:6]): the tangential spring xi (3, when ks > 0) and
 separation pa - pb (3), the GJK warm start."""
 cimport numpy as cnp
 from libc.math cimport sqrt, fabs
-from dem_contact.law cimport hooke
+from dem_contact.law cimport forget, hooke
 from dem.shapes._support cimport ShapeRef, quat_to_rot, support_world
 from dem._gjk cimport crust_contact, CONTACT_NONE
 
@@ -129,10 +129,8 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                 r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]
                 rsum = radius[i] + radius[j]
                 if r2 >= rsum * rsum:
-                    if use_xi and advance and (hist[k, 0] != 0.0 or hist[k, 1] != 0.0 or hist[k, 2] != 0.0):
-                        hist[k, 0] = 0.0
-                        hist[k, 1] = 0.0
-                        hist[k, 2] = 0.0
+                    if use_xi and advance:
+                        forget(&hist[k, 0])
                     continue
                 sj = shape[j]
                 sph_j = sj < 0 or is_sphere[sj] != 0
@@ -166,10 +164,8 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                     if (u[0] * dx[0] + u[1] * dx[1] + u[2] * dx[2] - _extent(&A, &rot[i, 0], &x[i, 0], sb)
                             - _extent(&B, &rot[j, 0], &x[j, 0], u) >= ca + cb):
                         nsep += 1
-                        if use_xi and advance and (hist[k, 0] != 0.0 or hist[k, 1] != 0.0 or hist[k, 2] != 0.0):
-                            hist[k, 0] = 0.0
-                            hist[k, 1] = 0.0
-                            hist[k, 2] = 0.0
+                        if use_xi and advance:
+                            forget(&hist[k, 0])
                         continue
                     ngjk += 1
                     code = crust_contact(&A, ca, &rot[i, 0], &x[i, 0], &B, cb, &rot[j, 0], &x[j, 0], tol, g,
@@ -178,10 +174,8 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                         for d in range(3):
                             hist[k, 3 + d] = g[d]
                     if code == CONTACT_NONE:
-                        if use_xi and advance and (hist[k, 0] != 0.0 or hist[k, 1] != 0.0 or hist[k, 2] != 0.0):
-                            hist[k, 0] = 0.0
-                            hist[k, 1] = 0.0
-                            hist[k, 2] = 0.0
+                        if use_xi and advance:
+                            forget(&hist[k, 0])
                         continue
                     if code > 1:
                         nepa += 1

@@ -13,7 +13,7 @@ a face or an edge lying on the wall gets its middle instead of one arbitrary cor
 moves continuously as the body tilts (a single corner below the plane is the deepest point again)."""
 cimport numpy as cnp
 from libc.math cimport sqrt
-from dem_contact.law cimport hooke
+from dem_contact.law cimport forget, hooke
 from dem.shapes._support cimport ShapeRef, quat_to_rot, support_world
 
 ctypedef cnp.int64_t i64
@@ -115,11 +115,8 @@ def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, 
                 for w in range(nw):
                     a = axis[w]
                     if side[w] * (x[i, a] - position[w]) >= radius[i]:     # bounding sphere clear
-                        if use_history and advance and (xi[i, 3 * w] != 0.0 or xi[i, 3 * w + 1] != 0.0
-                                                        or xi[i, 3 * w + 2] != 0.0):
-                            xi[i, 3 * w] = 0.0
-                            xi[i, 3 * w + 1] = 0.0
-                            xi[i, 3 * w + 2] = 0.0
+                        if use_history and advance:
+                            forget(&xi[i, 3 * w])
                         continue
                     if not posed:
                         sc = radius[i] / srad[s]
@@ -141,11 +138,8 @@ def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, 
                     support_world(&S, R, &x[i, 0], dn, p)      # deepest point towards the wall
                     gap = side[w] * (p[a] - position[w])
                     if gap >= 0.0:
-                        if use_history and advance and (xi[i, 3 * w] != 0.0 or xi[i, 3 * w + 1] != 0.0
-                                                        or xi[i, 3 * w + 2] != 0.0):
-                            xi[i, 3 * w] = 0.0
-                            xi[i, 3 * w + 1] = 0.0
-                            xi[i, 3 * w + 2] = 0.0
+                        if use_history and advance:
+                            forget(&xi[i, 3 * w])
                         continue
                     delta = -gap
                     ncont += 1
@@ -173,12 +167,8 @@ def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, 
                 a = axis[w]
                 gap = side[w] * (x[i, a] - position[w])
                 if gap >= radius[i]:
-                    # a contact that ended forgets its history (written only when set: saves bandwidth)
-                    if use_history and advance and (xi[i, 3 * w] != 0.0 or xi[i, 3 * w + 1] != 0.0
-                                                    or xi[i, 3 * w + 2] != 0.0):
-                        xi[i, 3 * w] = 0.0
-                        xi[i, 3 * w + 1] = 0.0
-                        xi[i, 3 * w + 2] = 0.0
+                    if use_history and advance:
+                        forget(&xi[i, 3 * w])
                     continue
                 delta = radius[i] - gap
                 ncont += 1

@@ -3,7 +3,7 @@
 with the shared Grains3D law (m_ij = m_i against a wall). The wall surface moves: its velocity at the
 contact point, Omega e_axis x (p - centre), enters the relative velocity, so friction drives the bed."""
 from libc.math cimport sqrt
-from dem_contact.law cimport hooke
+from dem_contact.law cimport forget, hooke
 
 
 cdef inline void _contact(int i, int w, const double[:, ::1] x, const double[:, ::1] v,
@@ -96,11 +96,8 @@ def drum_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, :
             rho = sqrt(n[b] * n[b] + n[c] * n[c])
             gap = rdrum - rho
             if gap >= radius[i] or rho == 0.0:
-                # a contact that ended forgets its history (written only when set: saves bandwidth)
-                if use_history and advance and (xi[i, 0] != 0.0 or xi[i, 1] != 0.0 or xi[i, 2] != 0.0):
-                    xi[i, 0] = 0.0
-                    xi[i, 1] = 0.0
-                    xi[i, 2] = 0.0
+                if use_history and advance:
+                    forget(&xi[i, 0])
             else:
                 n[axis] = 0.0
                 n[b] = -n[b] / rho
@@ -110,11 +107,8 @@ def drum_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, :
             for w in range(1, nends + 1):
                 gap = x[i, axis] - end_lo if w == 1 else end_hi - x[i, axis]
                 if gap >= radius[i]:
-                    if use_history and advance and (xi[i, 3 * w] != 0.0 or xi[i, 3 * w + 1] != 0.0
-                                                    or xi[i, 3 * w + 2] != 0.0):
-                        xi[i, 3 * w] = 0.0
-                        xi[i, 3 * w + 1] = 0.0
-                        xi[i, 3 * w + 2] = 0.0
+                    if use_history and advance:
+                        forget(&xi[i, 3 * w])
                     continue
                 n[0] = 0.0
                 n[1] = 0.0

@@ -2,7 +2,7 @@
 """Sphere-sphere contacts: analytic geometry, then the shared Grains3D law (dem_contact/law.pxd)."""
 cimport numpy as cnp
 from libc.math cimport sqrt
-from dem_contact.law cimport hooke
+from dem_contact.law cimport forget, hooke
 
 ctypedef cnp.int64_t i64
 
@@ -36,11 +36,8 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                 r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]
                 rsum = radius[i] + radius[j]
                 if r2 >= rsum * rsum:
-                    # a contact that ended forgets its history (written only when set: saves bandwidth)
-                    if use_history and advance and (xi[k, 0] != 0.0 or xi[k, 1] != 0.0 or xi[k, 2] != 0.0):
-                        xi[k, 0] = 0.0
-                        xi[k, 1] = 0.0
-                        xi[k, 2] = 0.0
+                    if use_history and advance:
+                        forget(&xi[k, 0])
                     continue
                 r = sqrt(r2)
                 rinv = 1.0 / r
