@@ -20,10 +20,12 @@ cdef struct Simplex:
     double a[4][3]         # support points on A
     double b[4][3]         # support points on B
     double lam[4]          # barycentric coordinates of the closest point
+    int fa[4]              # vertex index of a[i] on a polytope (support_world_id), -1 on a curved shape
+    int fb[4]
 
 cdef int gjk_distance(const ShapeRef* A, const double* Ra, const double* xa,
                       const ShapeRef* B, const double* Rb, const double* xb,
-                      double tol, double* v, Simplex* S, double* pa, double* pb) noexcept nogil
+                      double tol, double* v, Simplex* S, bint warm, double* pa, double* pb) noexcept nogil
 
 cdef int epa_penetration(const ShapeRef* A, const double* Ra, const double* xa,
                          const ShapeRef* B, const double* Rb, const double* xb,
@@ -36,5 +38,5 @@ cdef int signed_distance(const ShapeRef* A, const double* Ra, const double* xa,
 
 cdef int crust_contact(const ShapeRef* Acore, double crust_a, const double* Ra, const double* xa,
                        const ShapeRef* Bcore, double crust_b, const double* Rb, const double* xb,
-                       double tol, double* guess, double* overlap, double* normal,
+                       double tol, double* guess, double* feat, double* overlap, double* normal,
                        double* point) noexcept nogil

@@ -24,7 +24,7 @@ use EPA on the cores, depth + crust_a + crust_b (exact for the rounded bodies, c
 import numpy as np
 cimport numpy as cnp
 from libc.math cimport sqrt, fabs, cos, sin
-from dem.shapes._support cimport ShapeRef, support_world, quat_to_rot, NPARAM
+from dem.shapes._support cimport ShapeRef, support_world, support_world_id, vertex_world, quat_to_rot, NPARAM
 
 cdef enum:
     GJK_MAXIT = 128
@@ -67,6 +67,19 @@ cdef inline void _minkowski(const ShapeRef* A, const double* Ra, const double* x
     nd[2] = -d[2]
     support_world(A, Ra, xa, d, a)
     support_world(B, Rb, xb, nd, b)
+    _sub(a, b, w)
+
+
+cdef inline void _minkowski_id(const ShapeRef* A, const double* Ra, const double* xa,
+                               const ShapeRef* B, const double* Rb, const double* xb,
+                               const double* d, double* a, double* b, double* w, int* fa, int* fb) noexcept nogil:
+    """_minkowski, with the vertex indices of the two support points (-1 on curved shapes)."""
+    cdef double nd[3]
+    nd[0] = -d[0]
+    nd[1] = -d[1]
+    nd[2] = -d[2]
+    fa[0] = support_world_id(A, Ra, xa, d, a)
+    fb[0] = support_world_id(B, Rb, xb, nd, b)
     _sub(a, b, w)
 
 
@@ -229,12 +242,28 @@ cdef void _reduce(Simplex* S) noexcept nogil:
                     S.w[k][c] = S.w[i][c]
                     S.a[k][c] = S.a[i][c]
                     S.b[k][c] = S.b[i][c]
+                S.fa[k] = S.fa[i]
+                S.fb[k] = S.fb[i]
             S.lam[k] = lam[i]
             k += 1
     if k == 0:       # all weights underflowed: keep the point closest to the origin
         S.lam[0] = 1.0
         k = 1
     S.n = k
+
+
+cdef inline void _copy_simplex(Simplex* dst, const Simplex* src) noexcept nogil:
+    """Copy the live points only (a whole-struct copy costs more than a GJK iteration's arithmetic)."""
+    cdef int i, c
+    dst.n = src.n
+    for i in range(src.n):
+        for c in range(3):
+            dst.w[i][c] = src.w[i][c]
+            dst.a[i][c] = src.a[i][c]
+            dst.b[i][c] = src.b[i][c]
+        dst.lam[i] = src.lam[i]
+        dst.fa[i] = src.fa[i]
+        dst.fb[i] = src.fb[i]
 
 
 cdef inline void _closest(const Simplex* S, double* v) noexcept nogil:
@@ -257,8 +286,10 @@ cdef inline void _witness(const Simplex* S, double* pa, double* pb) noexcept nog
 
 cdef int gjk_distance(const ShapeRef* A, const double* Ra, const double* xa,
                       const ShapeRef* B, const double* Rb, const double* xb,
-                      double tol, double* v, Simplex* S, double* pa, double* pb) noexcept nogil:
-    """Closest points of A and B. On entry v is a guess of pa - pb (zero: use xa - xb); on exit v = pa - pb.
+                      double tol, double* v, Simplex* S, bint warm, double* pa, double* pb) noexcept nogil:
+    """Closest points of A and B. On entry v is a guess of pa - pb (zero: use xa - xb), or, if warm, S holds a
+    start simplex (S.n >= 1 points a, b, w = a - b, e.g. the last step's vertices at the new pose: a steady
+    contact then ends after one support query); on exit v = pa - pb.
     Returns GJK_SEPARATED (|v| is the distance) or GJK_INTERSECT (origin inside or on the boundary of
     A - B within ~1e-13 of the size; S holds the last simplex for EPA).
 
@@ -271,28 +302,44 @@ cdef int gjk_distance(const ShapeRef* A, const double* Ra, const double* xa,
     cdef double b[3]
     cdef double w[3]
     cdef double nlb[3]
-    cdef double vv, vw, maxw2, ww, dx, best_vv, lb = 0.0, lbi
+    cdef double vv, vw, maxw2, ww, dx, best_vv, lb = 0.0, lbi, rs, gap2
     cdef Simplex best
-    cdef int it, i, c, stall = 0
-    cdef bint dup
-    if _dot(v, v) == 0.0:
-        _sub(xa, xb, v)
+    cdef int it, i, c, stall = 0, ia, ib
+    cdef bint dup, cur_best
+    if warm and S.n > 0:
+        maxw2 = 0.0
+        for i in range(S.n):
+            ww = _dot(S.w[i], S.w[i])
+            if ww > maxw2:
+                maxw2 = ww
+        _reduce(S)
+        if S.n == 4:
+            v[0] = v[1] = v[2] = 0.0
+            _witness(S, pa, pb)
+            return GJK_INTERSECT
+        _closest(S, v)
+    else:
         if _dot(v, v) == 0.0:
-            v[0] = 1.0
-    d[0] = -v[0]
-    d[1] = -v[1]
-    d[2] = -v[2]
-    _minkowski(A, Ra, xa, B, Rb, xb, d, a, b, w)
-    S.n = 1
-    S.lam[0] = 1.0
-    for c in range(3):
-        S.w[0][c] = w[c]
-        S.a[0][c] = a[c]
-        S.b[0][c] = b[c]
-        v[c] = w[c]
-    maxw2 = _dot(w, w)
-    best = S[0]
-    best_vv = maxw2
+            _sub(xa, xb, v)
+            if _dot(v, v) == 0.0:
+                v[0] = 1.0
+        d[0] = -v[0]
+        d[1] = -v[1]
+        d[2] = -v[2]
+        _minkowski_id(A, Ra, xa, B, Rb, xb, d, a, b, w, &ia, &ib)
+        S.n = 1
+        S.lam[0] = 1.0
+        S.fa[0] = ia
+        S.fb[0] = ib
+        for c in range(3):
+            S.w[0][c] = w[c]
+            S.a[0][c] = a[c]
+            S.b[0][c] = b[c]
+            v[c] = w[c]
+        maxw2 = _dot(w, w)
+    best_vv = _dot(v, v)
+    cur_best = True                 # S is the best simplex so far (best is only written before S changes)
+    gap2 = (1.0 - tol) * (1.0 - tol)
     for it in range(GJK_MAXIT):
         vv = _dot(v, v)
         if vv <= EPS_ZERO * maxw2:
@@ -301,15 +348,16 @@ cdef int gjk_distance(const ShapeRef* A, const double* Ra, const double* xa,
         d[0] = -v[0]
         d[1] = -v[1]
         d[2] = -v[2]
-        _minkowski(A, Ra, xa, B, Rb, xb, d, a, b, w)
+        _minkowski_id(A, Ra, xa, B, Rb, xb, d, a, b, w, &ia, &ib)
         vw = _dot(v, w)
         if vw > 0.0:
-            lbi = vw / sqrt(vv)
+            rs = 1.0 / sqrt(vv)
+            lbi = vw * rs
             if lbi > lb:
                 lb = lbi
                 for c in range(3):
-                    nlb[c] = v[c] / sqrt(vv)
-        if vv - vw <= tol * vv or sqrt(best_vv) - lb <= tol * sqrt(best_vv):   # duality gap
+                    nlb[c] = v[c] * rs
+        if vv - vw <= tol * vv or lb * lb >= gap2 * best_vv:   # duality gap (|v|best - lb <= tol |v|best)
             break
         dup = False
         for i in range(S.n):
@@ -318,10 +366,14 @@ cdef int gjk_distance(const ShapeRef* A, const double* Ra, const double* xa,
                 dup = True
         if dup:
             break
+        if cur_best:
+            _copy_simplex(&best, S)
         for c in range(3):
             S.w[S.n][c] = w[c]
             S.a[S.n][c] = a[c]
             S.b[S.n][c] = b[c]
+        S.fa[S.n] = ia
+        S.fb[S.n] = ib
         S.n += 1
         ww = _dot(w, w)
         if ww > maxw2:
@@ -335,13 +387,15 @@ cdef int gjk_distance(const ShapeRef* A, const double* Ra, const double* xa,
         vv = _dot(v, v)
         if vv < best_vv:
             best_vv = vv
-            best = S[0]
+            cur_best = True
             stall = 0
         else:
+            cur_best = False
             stall += 1
             if stall >= 4:                      # round-off floor
                 break
-    S[0] = best
+    if not cur_best:
+        _copy_simplex(S, &best)
     _witness(S, pa, pb)
     _sub(pa, pb, v)
     if lb > 0.0:
@@ -706,7 +760,7 @@ cdef int signed_distance(const ShapeRef* A, const double* Ra, const double* xa,
     cdef Simplex S
     cdef double depth
     cdef double n[3]
-    cdef int r = gjk_distance(A, Ra, xa, B, Rb, xb, tol, guess, &S, pa, pb)
+    cdef int r = gjk_distance(A, Ra, xa, B, Rb, xb, tol, guess, &S, False, pa, pb)
     if r == GJK_SEPARATED:
         dist[0] = sqrt(_dot(guess, guess))
         return r
@@ -718,26 +772,68 @@ cdef int signed_distance(const ShapeRef* A, const double* Ra, const double* xa,
     return GJK_INTERSECT
 
 
+cdef double FEAT_BASE = 2097152.0      # feat = ia * FEAT_BASE + ib + 1 (exact in a double), 0: none
+
+
+cdef bint _load_features(const ShapeRef* A, const double* Ra, const double* xa,
+                         const ShapeRef* B, const double* Rb, const double* xb,
+                         const double* feat, Simplex* S) noexcept nogil:
+    """The simplex of the stored vertex pairs at the current poses; False if there is none."""
+    cdef int k, c, ia, ib
+    cdef double code
+    S.n = 0
+    for k in range(3):
+        if feat[k] <= 0.0:
+            break
+        code = feat[k] - 1.0
+        ia = <int>(code * (1.0 / FEAT_BASE))
+        ib = <int>(code - ia * FEAT_BASE)
+        if not vertex_world(A, Ra, xa, ia, S.a[k]) or not vertex_world(B, Rb, xb, ib, S.b[k]):
+            S.n = 0
+            return False
+        _sub(S.a[k], S.b[k], S.w[k])
+        S.fa[k] = ia
+        S.fb[k] = ib
+        S.n = k + 1
+    return S.n > 0
+
+
+cdef void _store_features(const Simplex* S, bint separated, double* feat) noexcept nogil:
+    cdef int k
+    feat[0] = feat[1] = feat[2] = 0.0
+    if not separated or S.n > 3:
+        return
+    for k in range(S.n):
+        if S.fa[k] < 0 or S.fb[k] < 0:
+            feat[0] = feat[1] = feat[2] = 0.0
+            return
+        feat[k] = S.fa[k] * FEAT_BASE + S.fb[k] + 1.0
+
+
 cdef int crust_contact(const ShapeRef* Acore, double crust_a, const double* Ra, const double* xa,
                        const ShapeRef* Bcore, double crust_b, const double* Rb, const double* xb,
-                       double tol, double* guess, double* overlap, double* normal,
+                       double tol, double* guess, double* feat, double* overlap, double* normal,
                        double* point) noexcept nogil:
     """Grains3D contact of the rounded bodies core (+) ball(crust). Returns CONTACT_NONE (outputs untouched
-    except guess), CONTACT_CRUST, CONTACT_EPA or CONTACT_FALLBACK. overlap > 0, normal unit from B to A,
-    point midway between the two swollen surfaces along the normal. guess (in/out): warm start."""
+    except guess and feat), CONTACT_CRUST, CONTACT_EPA or CONTACT_FALLBACK. overlap > 0, normal unit from B to
+    A, point midway between the two swollen surfaces along the normal. Warm start (in/out): guess, the last
+    core separation; feat (3 values, or NULL), the vertex pairs of the last GJK simplex of two polytopes."""
     cdef Simplex S
     cdef double pa[3]
     cdef double pb[3]
     cdef double d, depth, h, csum = crust_a + crust_b
     cdef int c, code
-    cdef int r = gjk_distance(Acore, Ra, xa, Bcore, Rb, xb, tol, guess, &S, pa, pb)
+    cdef bint warm = feat != NULL and _load_features(Acore, Ra, xa, Bcore, Rb, xb, feat, &S)
+    cdef int r = gjk_distance(Acore, Ra, xa, Bcore, Rb, xb, tol, guess, &S, warm, pa, pb)
+    if feat != NULL:
+        _store_features(&S, r == GJK_SEPARATED, feat)
     if r == GJK_SEPARATED:
         d = sqrt(_dot(guess, guess))
         if d >= csum:
             return CONTACT_NONE
         if d > 0.0:
             for c in range(3):
-                normal[c] = guess[c] / d
+                normal[c] = guess[c] * (1.0 / d)
             depth = -d
             code = CONTACT_CRUST
         else:
@@ -821,7 +917,7 @@ def pair_contact(int ka, const double[::1] params_a, const double[:, ::1] verts_
     if guess is not None:
         g[0], g[1], g[2] = guess[0], guess[1], guess[2]
     with nogil:
-        r = crust_contact(&A, crust_a, Ra, &xa[0], &B, crust_b, Rb, &xb[0], tol, g, &ov,
+        r = crust_contact(&A, crust_a, Ra, &xa[0], &B, crust_b, Rb, &xb[0], tol, g, NULL, &ov,
                           <double*>n.data, <double*>p.data)
     return r, ov, n, p
 
@@ -831,14 +927,18 @@ def contact_batch(const int[::1] core_kind, const double[:, ::1] core_params, co
                   const int[::1] shape, const double[:, ::1] x, const double[:, ::1] quat,
                   const int[::1] pi, const int[::1] pj, double tol,
                   double[:, ::1] guess, int[::1] code, double[::1] overlap, double[:, ::1] normal,
-                  double[:, ::1] point):
+                  double[:, ::1] point, double[:, ::1] feat=None):
     """Crust contacts of the pairs (pi[k], pj[k]) of particles with shapes shape[i] from a ShapeTable's core
-    arrays: the nogil batch loop a pair style runs. guess[k] warm-starts pair k. Returns the contact count."""
+    arrays: the nogil batch loop a pair style runs. guess[k] (and feat[k], 3 values, if given) warm-start
+    pair k. Returns the contact count."""
     cdef Py_ssize_t k, m = pi.shape[0]
     cdef int i, j, si, sj, nc = 0
     cdef ShapeRef A, B
     cdef double Ra[9]
     cdef double Rb[9]
+    cdef double* fp = NULL
+    if feat is not None and (feat.shape[0] < m or feat.shape[1] != 3):
+        raise ValueError("feat must have shape (len(pi), 3)")
     with nogil:
         for k in range(m):
             i = pi[k]
@@ -855,8 +955,10 @@ def contact_batch(const int[::1] core_kind, const double[:, ::1] core_params, co
             B.verts = &verts[core_voff[sj], 0]
             quat_to_rot(&quat[i, 0], Ra)
             quat_to_rot(&quat[j, 0], Rb)
+            if feat is not None:
+                fp = &feat[k, 0]
             code[k] = crust_contact(&A, crust[si], Ra, &x[i, 0], &B, crust[sj], Rb, &x[j, 0], tol,
-                                    &guess[k, 0], &overlap[k], &normal[k, 0], &point[k, 0])
+                                    &guess[k, 0], fp, &overlap[k], &normal[k, 0], &point[k, 0])
             if code[k] != CONTACT_NONE:
                 nc += 1
     return nc

@@ -14,7 +14,7 @@ layouts (params[0:7]; params[MARGIN] is an erosion by a ball, see _support.pxd):
 """
 import numpy as np
 cimport numpy as cnp
-from libc.math cimport sqrt, pow, fabs
+from libc.math cimport sqrt, pow, fabs, copysign, signbit
 
 
 cdef inline double _sgn1(double x) noexcept nogil:
@@ -76,9 +76,10 @@ cdef void support(int kind, const double* p, const double* verts, int nverts,
             out[1] = 0.0
             out[2] = 0.0
     elif kind == BOX:
-        out[0] = _sgn1(d[0]) * p[0]
-        out[1] = _sgn1(d[1]) * p[1]
-        out[2] = _sgn1(d[2]) * p[2]
+        # branchless: the signs of d are random across calls (mispredicted branches cost more than the rest)
+        out[0] = copysign(p[0], d[0])
+        out[1] = copysign(p[1], d[1])
+        out[2] = copysign(p[2], d[2])
     elif kind == CYLINDER:
         n = sqrt(d[0] * d[0] + d[1] * d[1])
         if n > 0.0:

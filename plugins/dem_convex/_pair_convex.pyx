@@ -9,8 +9,8 @@ the support point of s R K in direction d is s R s_K(R^T d) (support functions i
 direction), i.e. the support of the body scaled by s; its crust is s times the shape's crust. A sphere
 (shape -1, or a table sphere) is a point core with a crust equal to its radius: exact.
 
-History per pair (values[k, 0:6]): the tangential spring xi (3, when ks > 0) and the last core
-separation pa - pb (3), the GJK warm start."""
+History per pair (values[k, 0:9]): the tangential spring xi (3, when ks > 0), then the GJK warm start:
+the last core separation pa - pb (3) and, between two polytopes, the vertex pairs of the last simplex (3)."""
 cimport numpy as cnp
 from libc.math cimport sqrt, fabs
 from dem_contact.law cimport forget, hooke
@@ -19,6 +19,7 @@ from dem._gjk cimport crust_contact, CONTACT_NONE
 
 ctypedef cnp.int64_t i64
 
+cdef double MARGIN_SAFETY = 1e-12     # margins are kept this much (relative) short of the round-off
 cdef double POINT_PARAMS[8]
 POINT_PARAMS[:] = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
 
@@ -61,24 +62,39 @@ cdef inline double _extent(const ShapeRef* ref, const double* R, const double* x
     return u[0] * (sp[0] - x[0]) + u[1] * (sp[1] - x[1]) + u[2] * (sp[2] - x[2])
 
 
-def rotations(const double[:, ::1] quat, const double[::1] radius, const int[::1] shape,
-              const int[::1] is_sphere, const double[::1] srad, int nall, double[:, ::1] rot):
+def poses(const double[:, ::1] x, const double[:, ::1] quat, const double[::1] radius, const int[::1] shape,
+          const int[::1] is_sphere, const double[::1] srad, int nall, double[:, ::1] rot, double[:, ::1] xprev,
+          double[::1] move, bint reset):
     """rot[i] = scale_i R(quat_i), row-major, for the shaped particles (identity for spheres): computed
-    once per step, used by every pair of the particle."""
+    once per step, used by every pair of the particle. Unless reset, move[i] bounds how far any point of
+    particle i's core moved since the last call: |x - xprev| + ||R - R_prev||_F r_shape (a rotation moves a
+    point p by |(R - R_prev) p| <= ||R - R_prev||_F |p|)."""
     cdef int i, k, s
-    cdef double sc
+    cdef double sc, dr, dx
+    cdef double R[9]
     with nogil:
         for i in range(nall):
             s = shape[i]
             if s < 0 or is_sphere[s]:
                 for k in range(9):
-                    rot[i, k] = 0.0
-                rot[i, 0] = rot[i, 4] = rot[i, 8] = 1.0
-                continue
-            sc = radius[i] / srad[s]
-            quat_to_rot(&quat[i, 0], &rot[i, 0])
+                    R[k] = 0.0
+                R[0] = R[4] = R[8] = 1.0
+            else:
+                sc = radius[i] / srad[s]
+                quat_to_rot(&quat[i, 0], R)
+                for k in range(9):
+                    R[k] *= sc
+            if not reset:
+                dr = 0.0
+                for k in range(9):
+                    dr += (R[k] - rot[i, k]) * (R[k] - rot[i, k])
+                dx = ((x[i, 0] - xprev[i, 0]) * (x[i, 0] - xprev[i, 0]) + (x[i, 1] - xprev[i, 1]) * (x[i, 1] - xprev[i, 1])
+                      + (x[i, 2] - xprev[i, 2]) * (x[i, 2] - xprev[i, 2]))
+                move[i] = sqrt(dx) + (sqrt(dr) * srad[s] if s >= 0 and not is_sphere[s] else 0.0)
             for k in range(9):
-                rot[i, k] *= sc
+                rot[i, k] = R[k]
+            for k in range(3):
+                xprev[i, k] = x[i, k]
 
 
 def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1] omega,
@@ -89,14 +105,20 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
             const i64[::1] core_voff, const int[::1] core_nv, const double[::1] crust,
             const double[:, ::1] verts, const double[::1] srad,
             double[:, ::1] hist, bint use_xi, double tol, double dt, bint advance,
-            double[::1] stats, i64[::1] worst):
+            double[::1] margin, const double[::1] move, double[::1] stats, i64[::1] worst):
     """Adds contact forces and torques to f and torque (owned and ghost rows). stats receives
     [contacts, max overlap / smaller bounding diameter, elastic energy, GJK calls, EPA/fallback contacts,
-    pairs rejected by the separating-axis pre-test]; worst the (i, j) of the largest overlap.
+    pairs rejected by the separating-axis pre-test, pairs skipped on their margin]; worst the (i, j) of the
+    largest overlap.
 
     Pre-test: before GJK, the bodies are projected on the last separation direction (the warm start, or
     the line of centres): a gap at least crust_i + crust_j there proves there is no contact (most pairs
-    of a dense bed whose bounding spheres overlap are apart); costs two support points."""
+    of a dense bed whose bounding spheres overlap are apart); costs two support points.
+    Margin: a pair rejected by the pre-test keeps gap - crusts in margin[k]; that gap along the same axis
+    shrinks by at most move[i] + move[j] per call (see poses), so the pair is skipped while its margin lasts:
+    the pre-test would reject it again. The margins are a cache of the list (zero after a rebuild); skipping
+    changes no result: a rejected pair changes no history once its axis is stored (the line of centres at
+    the first rejection, or the last GJK separation), so the trajectory does not depend on the cache."""
     cdef int i, j, k, d, si, sj, code, ncont = 0, ngjk = 0, nepa = 0
     cdef double dx[3]
     cdef double n[3]
@@ -109,10 +131,12 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
     cdef double F[3]
     cdef double wr[3]
     cdef double g[3]
+    cdef double feat[3]
     cdef double u[3]
     cdef double sb[3]
     cdef double r2, r, rsum, delta, meff, ca, cb, energy = 0.0, ov, maxov = 0.0, fnmag, wmag, mr, rmin, gn
-    cdef int nsep = 0
+    cdef int nsep = 0, nskip = 0
+    cdef double gap
     cdef bint sph_i, sph_j
     cdef ShapeRef A, B
     cdef const double* c
@@ -123,6 +147,12 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
             sph_i = si < 0 or is_sphere[si] != 0
             for k in range(offsets[i], offsets[i + 1]):
                 j = neigh[k]
+                if margin[k] > 0.0:
+                    margin[k] -= move[i] + move[j]
+                    if margin[k] > 0.0:
+                        nskip += 1
+                        continue
+                    margin[k] = 0.0
                 dx[0] = x[i, 0] - x[j, 0]
                 dx[1] = x[i, 1] - x[j, 1]
                 dx[2] = x[i, 2] - x[j, 2]
@@ -149,6 +179,7 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                           srad, &B, &cb)
                     for d in range(3):
                         g[d] = hist[k, 3 + d]
+                        feat[d] = hist[k, 6 + d]
                     gn = g[0] * g[0] + g[1] * g[1] + g[2] * g[2]
                     if gn > 0.0:
                         gn = 1.0 / sqrt(gn)
@@ -158,21 +189,28 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                         gn = 1.0 / sqrt(r2)
                         for d in range(3):
                             u[d] = dx[d] * gn
+                            g[d] = dx[d]
                     # separating-axis pre-test along u (from j to i): gap = min_A u.a - max_B u.b
                     for d in range(3):
                         sb[d] = -u[d]
-                    if (u[0] * dx[0] + u[1] * dx[1] + u[2] * dx[2] - _extent(&A, &rot[i, 0], &x[i, 0], sb)
-                            - _extent(&B, &rot[j, 0], &x[j, 0], u) >= ca + cb):
+                    gap = (u[0] * dx[0] + u[1] * dx[1] + u[2] * dx[2] - _extent(&A, &rot[i, 0], &x[i, 0], sb)
+                           - _extent(&B, &rot[j, 0], &x[j, 0], u) - ca - cb)
+                    if gap >= 0.0:
                         nsep += 1
-                        if use_xi and advance:
-                            forget(&hist[k, 0])
+                        if advance:      # (a setup pass forgets no spring: it must not skip the pair later)
+                            margin[k] = gap - MARGIN_SAFETY * rsum
+                            for d in range(3):      # the axis stays fixed while the pair is apart
+                                hist[k, 3 + d] = g[d]
+                            if use_xi:
+                                forget(&hist[k, 0])
                         continue
                     ngjk += 1
                     code = crust_contact(&A, ca, &rot[i, 0], &x[i, 0], &B, cb, &rot[j, 0], &x[j, 0], tol, g,
-                                         &delta, n, p)
-                    if advance:          # a setup pass changes no history (warm start included)
+                                         &feat[0], &delta, n, p)
+                    if advance:          # warm start; a setup pass changes no history
                         for d in range(3):
                             hist[k, 3 + d] = g[d]
+                            hist[k, 6 + d] = feat[d]
                     if code == CONTACT_NONE:
                         if use_xi and advance:
                             forget(&hist[k, 0])
@@ -225,3 +263,4 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
     stats[3] = ngjk
     stats[4] = nepa
     stats[5] = nsep
+    stats[6] = nskip

@@ -65,17 +65,20 @@ class PairConvexGJK(PairCoefficients, Pair):
         self.init_coefficients()
         self.history = None
         self.use_xi = False
-        self.stats = np.zeros(6)
-        self.rot = np.zeros((0, 9))
+        self.stats = np.zeros(7)
+        self.rot, self.xprev, self.move = np.zeros((0, 9)), np.zeros((0, 3)), np.zeros(0)
+        self.margin = np.zeros(0)      # per list entry: gap left before contact (see _pair_convex.compute)
+        self.seen_build = self.seen_nall = -1
         self.worst = np.zeros(2, dtype=np.int64)
         self.ngjk = 0
         self.nepa = 0
         self.nsep = 0
+        self.nskip = 0
 
     def init(self):
         self.use_xi = self.check_coefficients()
         if self.history is None:
-            self.history = History(self.sim, "pair_convex", 6)
+            self.history = History(self.sim, "pair_convex", 9)
             self.sim.neighbor.histories.append(self.history)
         sim = self.sim
         atom = sim.atom
@@ -92,19 +95,26 @@ class PairConvexGJK(PairCoefficients, Pair):
         h = self.history
         t = self.shape_arrays
         nall = sim.atom.nall
-        if len(self.rot) < nall:
-            self.rot = np.zeros((int(nall * 1.2) + 16, 9))
-        _pair_convex.rotations(a["quat"], a["radius"], a["shape"], t["is_sphere"], t["radius"], nall, self.rot)
+        reset = nb.nbuilds != self.seen_build or len(self.margin) != nb.nentries or nall != self.seen_nall
+        if reset:
+            self.seen_build, self.seen_nall = nb.nbuilds, nall
+            self.margin = np.zeros(nb.nentries)
+            if len(self.rot) < nall:
+                n = int(nall * 1.2) + 16
+                self.rot, self.xprev, self.move = np.zeros((n, 9)), np.zeros((n, 3)), np.zeros(n)
+        _pair_convex.poses(a["x"], a["quat"], a["radius"], a["shape"], t["is_sphere"], t["radius"], nall,
+                           self.rot, self.xprev, self.move, reset)
         _pair_convex.compute(a["x"], a["v"], a["omega"], a["f"], a["torque"], self.rot, a["radius"],
                              a["rmass"], a["type"], a["shape"], sim.atom.nlocal, nb.offsets, nb.neigh,
                              self.table, t["is_sphere"], t["core_kind"], t["core_params"], t["core_voff"],
                              t["core_nv"], t["crust"], t["verts"], t["radius"], h.values, self.use_xi,
-                             self.tol, sim.update.dt, advance, self.stats, self.worst)
+                             self.tol, sim.update.dt, advance, self.margin, self.move, self.stats, self.worst)
         self.ncontacts = int(self.stats[0])
         self.max_overlap = float(self.stats[1])
         self.energy = float(self.stats[2])
         self.ngjk += int(self.stats[3])
         self.nepa += int(self.stats[4])
         self.nsep += int(self.stats[5])
+        self.nskip += int(self.stats[6])
         if self.ncontacts:
             self.max_overlap_tags = (int(a["tag"][self.worst[0]]), int(a["tag"][self.worst[1]]))
