@@ -392,6 +392,39 @@ thermo 0
         assert np.array_equal(sim.gather(name), ref.gather(name)), name
 
 
+def test_pair_margins_change_no_result():
+    """Pairs proved apart by the pre-test are skipped while their margin lasts (a cache of the neighbor list,
+    cleared on every rebuild). A rebuild every step (no margin ever used) against the default: the same
+    trajectory bit for bit (no sort, no periodic axis: see test_neighbor.py), so no contact was missed."""
+    script = """
+atom_modify sort 0 0
+shape c cube 0.002
+shape t tetrahedron 0.003
+shape p pinacoid 0.003 0.0015 0.001 60
+region fill block -0.0098 0.0098 -0.0098 0.0098 -0.0098 0.0098
+create_atoms 1 random 40 7 fill shape c quat random density 2500
+set atom 1:10 shape t
+set atom 11:16 shape p
+shape s sphere 0.001
+set atom 17:20 shape s
+pair_style convex/gjk
+pair_coeff * * kn 1e4 en 0.5 mu 0.5 ks 3000
+fix 1 all nve/shape
+fix g all gravity 9.81 vector 0.2 0.1 -1
+fix w all wall/plane zplane -0.01 NULL xplane -0.01 0.01 yplane -0.01 0.01 kn 1e4 en 0.5 mu 0.5
+timestep 5e-6
+thermo 0
+"""
+    a = make(script)
+    b = make(script + "neigh_modify every 1 check no\n")
+    a.run(40000)
+    b.run(40000)
+    assert b.neighbor.nbuilds == 40001 and a.neighbor.nbuilds < 2000
+    assert a.pair.nskip > 10000 and b.pair.nskip == 0 and a.pair.ncontacts > 20
+    for name in ("x", "v", "omega", "angmom", "quat"):
+        assert np.array_equal(a.gather(name), b.gather(name)), name
+
+
 def _mpiexec():
     for folder in (os.path.dirname(sys.executable), None):
         found = shutil.which("mpiexec", path=folder) if folder else shutil.which("mpiexec")
