@@ -40,6 +40,7 @@ def nve_shape(double[:, ::1] x, double[:, ::1] v, const double[:, ::1] f, double
     cdef double jb[3]
     cdef double wb[3]
     cdef double wn[3]
+    cdef double inv[3]
     cdef double lw[3]
     cdef double c[3]
     cdef double dq[4]
@@ -55,7 +56,8 @@ def nve_shape(double[:, ::1] x, double[:, ::1] v, const double[:, ::1] f, double
                 angmom[i, d] += dt * torque[i, d]
             quat_rotate_inv(&quat[i, 0], &angmom[i, 0], jb)
             for d in range(3):
-                wb[d] = jb[d] / inertia[i, d]
+                inv[d] = 1.0 / inertia[i, d]
+                wb[d] = jb[d] * inv[d]
             for it in range(50):
                 for d in range(3):
                     lw[d] = inertia[i, d] * wb[d]
@@ -63,7 +65,7 @@ def nve_shape(double[:, ::1] x, double[:, ::1] v, const double[:, ::1] f, double
                 err = 0.0
                 n2 = 0.0
                 for d in range(3):
-                    wn[d] = (jb[d] + h * c[d]) / inertia[i, d]
+                    wn[d] = (jb[d] + h * c[d]) * inv[d]
                     err += (wn[d] - wb[d]) * (wn[d] - wb[d])
                     n2 += wn[d] * wn[d]
                     wb[d] = wn[d]

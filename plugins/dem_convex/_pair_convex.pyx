@@ -66,9 +66,9 @@ def poses(const double[:, ::1] x, const double[:, ::1] quat, const double[::1] r
           const int[::1] is_sphere, const double[::1] srad, int nall, double[:, ::1] rot, double[:, ::1] xprev,
           double[::1] move, bint reset):
     """rot[i] = scale_i R(quat_i), row-major, for the shaped particles (identity for spheres): computed
-    once per step, used by every pair of the particle. Unless reset, move[i] bounds how far any point of
-    particle i's core moved since the last call: |x - xprev| + ||R - R_prev||_F r_shape (a rotation moves a
-    point p by |(R - R_prev) p| <= ||R - R_prev||_F |p|)."""
+    once per step, used by every pair of the particle. move[i] bounds how far any point of
+    particle i's core moved since the last call (zero on reset): |x - xprev| + ||R - R_prev||_F r_shape (a
+    rotation moves a point p by |(R - R_prev) p| <= ||R - R_prev||_F |p|)."""
     cdef int i, k, s
     cdef double sc, dr, dx
     cdef double R[9]
@@ -84,6 +84,7 @@ def poses(const double[:, ::1] x, const double[:, ::1] quat, const double[::1] r
                 quat_to_rot(&quat[i, 0], R)
                 for k in range(9):
                     R[k] *= sc
+            move[i] = 0.0
             if not reset:
                 dr = 0.0
                 for k in range(9):
@@ -105,7 +106,7 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
             const i64[::1] core_voff, const int[::1] core_nv, const double[::1] crust,
             const double[:, ::1] verts, const double[::1] srad,
             double[:, ::1] hist, bint use_xi, double tol, double dt, bint advance,
-            double[::1] margin, const double[::1] move, double[::1] stats, i64[::1] worst):
+            double[::1] margin, const double[::1] move, int[:, ::1] active, double[::1] stats, i64[::1] worst):
     """Adds contact forces and torques to f and torque (owned and ghost rows). stats receives
     [contacts, max overlap / smaller bounding diameter, elastic energy, GJK calls, EPA/fallback contacts,
     pairs rejected by the separating-axis pre-test, pairs skipped on their margin]; worst the (i, j) of the
@@ -114,11 +115,13 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
     Pre-test: before GJK, the bodies are projected on the last separation direction (the warm start, or
     the line of centres): a gap at least crust_i + crust_j there proves there is no contact (most pairs
     of a dense bed whose bounding spheres overlap are apart); costs two support points.
-    Margin: a pair rejected by the pre-test keeps gap - crusts in margin[k]; that gap along the same axis
-    shrinks by at most move[i] + move[j] per call (see poses), so the pair is skipped while its margin lasts:
-    the pre-test would reject it again. The margins are a cache of the list (zero after a rebuild); skipping
-    changes no result: a rejected pair changes no history once its axis is stored (the line of centres at
-    the first rejection, or the last GJK separation), so the trajectory does not depend on the cache."""
+    Margin: a pair rejected by the bounding spheres or the pre-test keeps its gap (minus the crusts) in
+    margin[k]; that gap (along the same axis) shrinks by at most move[i] + move[j] per call (see poses), so
+    the pair is skipped while its margin lasts: the test would reject it again. A first pass decrements every
+    margin and lists the pairs left (active, (i, k) rows), a second treats those. The margins are a cache of
+    the list (zero after a rebuild); skipping changes no result: a rejected pair changes no history once its
+    axis is stored (the line of centres at the first rejection, or the last GJK separation), so the
+    trajectory does not depend on the cache."""
     cdef int i, j, k, d, si, sj, code, ncont = 0, ngjk = 0, nepa = 0
     cdef double dx[3]
     cdef double n[3]
@@ -141,122 +144,131 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
     cdef ShapeRef A, B
     cdef const double* c
     cdef double* h
+    cdef int a, na = 0
+    cdef double mi, m
     with nogil:
-        for i in range(nlocal):
+        for i in range(nlocal):          # pass 1: margins (branch-free: the outcome is unpredictable)
+            mi = move[i]
+            for k in range(offsets[i], offsets[i + 1]):
+                m = margin[k] - (mi + move[neigh[k]])
+                margin[k] = m
+                active[na, 0] = i
+                active[na, 1] = k
+                na += m <= 0.0
+        nskip = <int>(offsets[nlocal] - offsets[0]) - na
+        for a in range(na):
+            i = active[a, 0]
+            k = active[a, 1]
+            margin[k] = 0.0
             si = shape[i]
             sph_i = si < 0 or is_sphere[si] != 0
-            for k in range(offsets[i], offsets[i + 1]):
-                j = neigh[k]
-                if margin[k] > 0.0:
-                    margin[k] -= move[i] + move[j]
-                    if margin[k] > 0.0:
-                        nskip += 1
-                        continue
-                    margin[k] = 0.0
-                dx[0] = x[i, 0] - x[j, 0]
-                dx[1] = x[i, 1] - x[j, 1]
-                dx[2] = x[i, 2] - x[j, 2]
-                r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]
-                rsum = radius[i] + radius[j]
-                if r2 >= rsum * rsum:
+            j = neigh[k]
+            dx[0] = x[i, 0] - x[j, 0]
+            dx[1] = x[i, 1] - x[j, 1]
+            dx[2] = x[i, 2] - x[j, 2]
+            r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]
+            rsum = radius[i] + radius[j]
+            if r2 >= rsum * rsum:
+                if advance:
+                    margin[k] = sqrt(r2) - rsum - MARGIN_SAFETY * rsum
+                    if use_xi:
+                        forget(&hist[k, 0])
+                continue
+            sj = shape[j]
+            sph_j = sj < 0 or is_sphere[sj] != 0
+            if sph_i and sph_j:
+                r = sqrt(r2)
+                for d in range(3):
+                    n[d] = dx[d] / r
+                delta = rsum - r
+                # contact point in the middle of the overlap
+                for d in range(3):
+                    p[d] = x[i, d] - (radius[i] - 0.5 * delta) * n[d]
+            else:
+                _pose(i, si, radius, is_sphere, core_kind, core_params, core_voff, core_nv, crust, verts,
+                      srad, &A, &ca)
+                _pose(j, sj, radius, is_sphere, core_kind, core_params, core_voff, core_nv, crust, verts,
+                      srad, &B, &cb)
+                for d in range(3):
+                    g[d] = hist[k, 3 + d]
+                    feat[d] = hist[k, 6 + d]
+                gn = g[0] * g[0] + g[1] * g[1] + g[2] * g[2]
+                if gn > 0.0:
+                    gn = 1.0 / sqrt(gn)
+                    for d in range(3):
+                        u[d] = g[d] * gn
+                else:
+                    gn = 1.0 / sqrt(r2)
+                    for d in range(3):
+                        u[d] = dx[d] * gn
+                        g[d] = dx[d]
+                # separating-axis pre-test along u (from j to i): gap = min_A u.a - max_B u.b
+                for d in range(3):
+                    sb[d] = -u[d]
+                gap = (u[0] * dx[0] + u[1] * dx[1] + u[2] * dx[2] - _extent(&A, &rot[i, 0], &x[i, 0], sb)
+                       - _extent(&B, &rot[j, 0], &x[j, 0], u) - ca - cb)
+                if gap >= 0.0:
+                    nsep += 1
+                    if advance:      # (a setup pass forgets no spring: it must not skip the pair later)
+                        margin[k] = gap - MARGIN_SAFETY * rsum
+                        for d in range(3):      # the axis stays fixed while the pair is apart
+                            hist[k, 3 + d] = g[d]
+                        if use_xi:
+                            forget(&hist[k, 0])
+                    continue
+                ngjk += 1
+                code = crust_contact(&A, ca, &rot[i, 0], &x[i, 0], &B, cb, &rot[j, 0], &x[j, 0], tol, g,
+                                     &feat[0], &delta, n, p)
+                if advance:          # warm start; a setup pass changes no history
+                    for d in range(3):
+                        hist[k, 3 + d] = g[d]
+                        hist[k, 6 + d] = feat[d]
+                if code == CONTACT_NONE:
                     if use_xi and advance:
                         forget(&hist[k, 0])
                     continue
-                sj = shape[j]
-                sph_j = sj < 0 or is_sphere[sj] != 0
-                if sph_i and sph_j:
-                    r = sqrt(r2)
-                    for d in range(3):
-                        n[d] = dx[d] / r
-                    delta = rsum - r
-                    # contact point in the middle of the overlap
-                    for d in range(3):
-                        p[d] = x[i, d] - (radius[i] - 0.5 * delta) * n[d]
-                else:
-                    _pose(i, si, radius, is_sphere, core_kind, core_params, core_voff, core_nv, crust, verts,
-                          srad, &A, &ca)
-                    _pose(j, sj, radius, is_sphere, core_kind, core_params, core_voff, core_nv, crust, verts,
-                          srad, &B, &cb)
-                    for d in range(3):
-                        g[d] = hist[k, 3 + d]
-                        feat[d] = hist[k, 6 + d]
-                    gn = g[0] * g[0] + g[1] * g[1] + g[2] * g[2]
-                    if gn > 0.0:
-                        gn = 1.0 / sqrt(gn)
-                        for d in range(3):
-                            u[d] = g[d] * gn
-                    else:
-                        gn = 1.0 / sqrt(r2)
-                        for d in range(3):
-                            u[d] = dx[d] * gn
-                            g[d] = dx[d]
-                    # separating-axis pre-test along u (from j to i): gap = min_A u.a - max_B u.b
-                    for d in range(3):
-                        sb[d] = -u[d]
-                    gap = (u[0] * dx[0] + u[1] * dx[1] + u[2] * dx[2] - _extent(&A, &rot[i, 0], &x[i, 0], sb)
-                           - _extent(&B, &rot[j, 0], &x[j, 0], u) - ca - cb)
-                    if gap >= 0.0:
-                        nsep += 1
-                        if advance:      # (a setup pass forgets no spring: it must not skip the pair later)
-                            margin[k] = gap - MARGIN_SAFETY * rsum
-                            for d in range(3):      # the axis stays fixed while the pair is apart
-                                hist[k, 3 + d] = g[d]
-                            if use_xi:
-                                forget(&hist[k, 0])
-                        continue
-                    ngjk += 1
-                    code = crust_contact(&A, ca, &rot[i, 0], &x[i, 0], &B, cb, &rot[j, 0], &x[j, 0], tol, g,
-                                         &feat[0], &delta, n, p)
-                    if advance:          # warm start; a setup pass changes no history
-                        for d in range(3):
-                            hist[k, 3 + d] = g[d]
-                            hist[k, 6 + d] = feat[d]
-                    if code == CONTACT_NONE:
-                        if use_xi and advance:
-                            forget(&hist[k, 0])
-                        continue
-                    if code > 1:
-                        nepa += 1
-                ncont += 1
-                rmin = radius[i] if radius[i] < radius[j] else radius[j]
-                ov = delta / (2.0 * rmin)
-                if ov > maxov:
-                    maxov = ov
-                    worst[0] = i
-                    worst[1] = j
-                meff = rmass[i] * rmass[j] / (rmass[i] + rmass[j])
+                if code > 1:
+                    nepa += 1
+            ncont += 1
+            rmin = radius[i] if radius[i] < radius[j] else radius[j]
+            ov = delta / (2.0 * rmin)
+            if ov > maxov:
+                maxov = ov
+                worst[0] = i
+                worst[1] = j
+            meff = rmass[i] * rmass[j] / (rmass[i] + rmass[j])
+            for d in range(3):
+                li[d] = p[d] - x[i, d]
+                lj[d] = p[d] - x[j, d]
+            # velocity of i relative to j at the contact point
+            vr[0] = v[i, 0] + omega[i, 1] * li[2] - omega[i, 2] * li[1] - (v[j, 0] + omega[j, 1] * lj[2] - omega[j, 2] * lj[1])
+            vr[1] = v[i, 1] + omega[i, 2] * li[0] - omega[i, 0] * li[2] - (v[j, 1] + omega[j, 2] * lj[0] - omega[j, 0] * lj[2])
+            vr[2] = v[i, 2] + omega[i, 0] * li[1] - omega[i, 1] * li[0] - (v[j, 2] + omega[j, 0] * lj[1] - omega[j, 1] * lj[0])
+            c = &coeff[type_[i], type_[j], 0]
+            h = &hist[k, 0] if use_xi else NULL
+            energy += hooke(c, delta, n, vr, meff, h, dt, advance, fn, ft)
+            for d in range(3):
+                F[d] = fn[d] + ft[d]
+                f[i, d] += F[d]
+                f[j, d] -= F[d]
+            # torques about each centre of mass: lever to the contact point
+            torque[i, 0] += li[1] * F[2] - li[2] * F[1]
+            torque[i, 1] += li[2] * F[0] - li[0] * F[2]
+            torque[i, 2] += li[0] * F[1] - li[1] * F[0]
+            torque[j, 0] -= lj[1] * F[2] - lj[2] * F[1]
+            torque[j, 1] -= lj[2] * F[0] - lj[0] * F[2]
+            torque[j, 2] -= lj[0] * F[1] - lj[1] * F[0]
+            if c[5] > 0.0 and sph_i and sph_j:
+                # rolling resistance between spheres (as pair sphere); none for shaped bodies (Part III)
                 for d in range(3):
-                    li[d] = p[d] - x[i, d]
-                    lj[d] = p[d] - x[j, d]
-                # velocity of i relative to j at the contact point
-                vr[0] = v[i, 0] + omega[i, 1] * li[2] - omega[i, 2] * li[1] - (v[j, 0] + omega[j, 1] * lj[2] - omega[j, 2] * lj[1])
-                vr[1] = v[i, 1] + omega[i, 2] * li[0] - omega[i, 0] * li[2] - (v[j, 1] + omega[j, 2] * lj[0] - omega[j, 0] * lj[2])
-                vr[2] = v[i, 2] + omega[i, 0] * li[1] - omega[i, 1] * li[0] - (v[j, 2] + omega[j, 0] * lj[1] - omega[j, 1] * lj[0])
-                c = &coeff[type_[i], type_[j], 0]
-                h = &hist[k, 0] if use_xi else NULL
-                energy += hooke(c, delta, n, vr, meff, h, dt, advance, fn, ft)
-                for d in range(3):
-                    F[d] = fn[d] + ft[d]
-                    f[i, d] += F[d]
-                    f[j, d] -= F[d]
-                # torques about each centre of mass: lever to the contact point
-                torque[i, 0] += li[1] * F[2] - li[2] * F[1]
-                torque[i, 1] += li[2] * F[0] - li[0] * F[2]
-                torque[i, 2] += li[0] * F[1] - li[1] * F[0]
-                torque[j, 0] -= lj[1] * F[2] - lj[2] * F[1]
-                torque[j, 1] -= lj[2] * F[0] - lj[0] * F[2]
-                torque[j, 2] -= lj[0] * F[1] - lj[1] * F[0]
-                if c[5] > 0.0 and sph_i and sph_j:
-                    # rolling resistance between spheres (as pair sphere); none for shaped bodies (Part III)
+                    wr[d] = omega[i, d] - omega[j, d]
+                wmag = sqrt(wr[0] * wr[0] + wr[1] * wr[1] + wr[2] * wr[2])
+                if wmag > 0.0:
+                    fnmag = sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2])
+                    mr = c[5] * (radius[i] * radius[j] / rsum) * fnmag / wmag
                     for d in range(3):
-                        wr[d] = omega[i, d] - omega[j, d]
-                    wmag = sqrt(wr[0] * wr[0] + wr[1] * wr[1] + wr[2] * wr[2])
-                    if wmag > 0.0:
-                        fnmag = sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2])
-                        mr = c[5] * (radius[i] * radius[j] / rsum) * fnmag / wmag
-                        for d in range(3):
-                            torque[i, d] -= mr * wr[d]
-                            torque[j, d] += mr * wr[d]
+                        torque[i, d] -= mr * wr[d]
+                        torque[j, d] += mr * wr[d]
     stats[0] = ncont
     stats[1] = maxov
     stats[2] = energy

@@ -28,8 +28,11 @@ class PairConvexGJK(PairCoefficients, Pair):
     The Grains3D law (Part III eq. 10-16, `dem_contact`) acts at the contact point with the relative
     velocity of the two surfaces there, the reduced mass m_ij and torques from the lever centre of mass ->
     contact point. Coefficients per type pair as for `pair_style sphere` (rolling resistance applies
-    between two spheres only). The tangential spring (ks > 0) and the last core separation (GJK warm
-    start) are contact history that survives rebuilds, restarts and migration.
+    between two spheres only). The tangential spring (ks > 0) and the GJK warm start (the last core
+    separation and, between boxes/polyhedra, the vertices of the last simplex: a lasting contact then
+    costs one support query) are contact history that survives rebuilds, restarts and migration.
+    Pairs proved apart (bounding spheres, or a projection on the last separating axis) are skipped until
+    the particles have moved or turned enough to close that gap, which changes no result.
 
     `tol`: relative accuracy of the GJK distance (default 1e-8; distances between cores are of the order
     of the crust, so this is far below any overlap that matters).
@@ -99,6 +102,7 @@ class PairConvexGJK(PairCoefficients, Pair):
         if reset:
             self.seen_build, self.seen_nall = nb.nbuilds, nall
             self.margin = np.zeros(nb.nentries)
+            self.active = np.zeros((nb.nentries, 2), dtype=np.int32)
             if len(self.rot) < nall:
                 n = int(nall * 1.2) + 16
                 self.rot, self.xprev, self.move = np.zeros((n, 9)), np.zeros((n, 3)), np.zeros(n)
@@ -108,7 +112,8 @@ class PairConvexGJK(PairCoefficients, Pair):
                              a["rmass"], a["type"], a["shape"], sim.atom.nlocal, nb.offsets, nb.neigh,
                              self.table, t["is_sphere"], t["core_kind"], t["core_params"], t["core_voff"],
                              t["core_nv"], t["crust"], t["verts"], t["radius"], h.values, self.use_xi,
-                             self.tol, sim.update.dt, advance, self.margin, self.move, self.stats, self.worst)
+                             self.tol, sim.update.dt, advance, self.margin, self.move, self.active, self.stats,
+                             self.worst)
         self.ncontacts = int(self.stats[0])
         self.max_overlap = float(self.stats[1])
         self.energy = float(self.stats[2])
