@@ -772,6 +772,147 @@ cdef int signed_distance(const ShapeRef* A, const double* Ra, const double* xa,
     return GJK_INTERSECT
 
 
+cdef inline bint _inside(const double* p0, const double* p1, const double* p2, double* lam,
+                         double* v) noexcept nogil:
+    """Projection of the origin on the plane of the triangle (p0, p1, p2): True, with its barycentric
+    weights and the point, if it falls strictly inside a triangle that is not thin."""
+    cdef double e1[3]
+    cdef double e2[3]
+    cdef double d00, d01, d11, d20, d21, den, s, t
+    cdef int c
+    _sub(p1, p0, e1)
+    _sub(p2, p0, e2)
+    d00 = _dot(e1, e1)
+    d01 = _dot(e1, e2)
+    d11 = _dot(e2, e2)
+    den = d00 * d11 - d01 * d01            # |e1 x e2|^2
+    if not den > 1e-6 * d00 * d11:        # thin: left to the signed-volume solver
+        return False
+    d20 = -_dot(p0, e1)
+    d21 = -_dot(p0, e2)
+    s = (d11 * d20 - d01 * d21) / den
+    t = (d00 * d21 - d01 * d20) / den
+    if not (s > 0.0 and t > 0.0 and s + t < 1.0):
+        return False
+    lam[0] = 1.0 - s - t
+    lam[1] = s
+    lam[2] = t
+    for c in range(3):
+        v[c] = p0[c] + s * e1[c] + t * e2[c]
+    return True
+
+
+cdef inline void _set_point(Simplex* S, int k, const double* w, const double* a, const double* b, int ia,
+                            int ib) noexcept nogil:
+    cdef int c
+    for c in range(3):
+        S.w[k][c] = w[c]
+        S.a[k][c] = a[c]
+        S.b[k][c] = b[c]
+    S.fa[k] = ia
+    S.fb[k] = ib
+
+
+cdef int _warm_triangle(const ShapeRef* A, const double* Ra, const double* xa,
+                        const ShapeRef* B, const double* Rb, const double* xb, double tol,
+                        Simplex* S, double* v, double* pa, double* pb) noexcept nogil:
+    """GJK for the common case of a lasting contact between polytopes, in straight-line code: the closest
+    point stays inside a triangle. The stored triangle is checked by one support query; when the gap stays
+    open (the touching vertex changed), the new point w and two old ones make the next triangle: the face of
+    the tetrahedron that the origin sees and on which it projects inside holds its closest point. Returns
+    GJK_SEPARATED (v = pa - pb, as gjk_distance), or -1 with S ready for gjk_distance(warm): the current
+    triangle, plus the last support point if the gap was open."""
+    cdef double d[3]
+    cdef double a[3]
+    cdef double b[3]
+    cdef double w[3]
+    cdef double n[3]
+    cdef double e1[3]
+    cdef double e2[3]
+    cdef double lam[3]
+    cdef double vn[3]
+    cdef double vv, vw, maxw2, best_vv
+    cdef double tw[3][3]
+    cdef double ta[3][3]
+    cdef double tb[3][3]
+    cdef int tfa[3]
+    cdef int tfb[3]
+    cdef int c, ia, ib, it, e, i, j, k
+    if not _inside(S.w[0], S.w[1], S.w[2], S.lam, v):
+        return -1
+    maxw2 = 0.0
+    for k in range(3):
+        vv = _dot(S.w[k], S.w[k])
+        if vv > maxw2:
+            maxw2 = vv
+    for it in range(4):
+        vv = _dot(v, v)
+        if vv <= EPS_ZERO * maxw2:
+            return -1
+        for c in range(3):
+            d[c] = -v[c]
+        _minkowski_id(A, Ra, xa, B, Rb, xb, d, a, b, w, &ia, &ib)
+        vw = _dot(v, w)
+        if vv - vw <= tol * vv:
+            _witness(S, pa, pb)
+            _sub(pa, pb, v)
+            return GJK_SEPARATED
+        vw = _dot(w, w)
+        if vw > maxw2:
+            maxw2 = vw
+        for e in range(3):             # faces (w, S_i, S_j) of the tetrahedron, S_k opposite
+            i = e
+            j = (e + 1) % 3
+            k = (e + 2) % 3
+            _sub(S.w[i], w, e1)
+            _sub(S.w[j], w, e2)
+            _cross(e1, e2, n)
+            _sub(S.w[k], w, e1)
+            if _dot(n, e1) > 0.0:       # outward normal: away from S_k
+                n[0] = -n[0]
+                n[1] = -n[1]
+                n[2] = -n[2]
+            if -_dot(n, w) <= 0.0:      # the origin does not see this face
+                continue
+            if _inside(S.w[i], S.w[j], w, lam, vn):
+                break
+        else:
+            _set_point(S, 3, w, a, b, ia, ib)
+            S.n = 4
+            return -1
+        if _dot(vn, vn) >= vv:          # no progress (round-off): the general loop decides
+            _set_point(S, 3, w, a, b, ia, ib)
+            S.n = 4
+            return -1
+        for c in range(3):              # new triangle (S_i, S_j, w)
+            tw[0][c] = S.w[i][c]
+            ta[0][c] = S.a[i][c]
+            tb[0][c] = S.b[i][c]
+            tw[1][c] = S.w[j][c]
+            ta[1][c] = S.a[j][c]
+            tb[1][c] = S.b[j][c]
+        tfa[0] = S.fa[i]
+        tfb[0] = S.fb[i]
+        tfa[1] = S.fa[j]
+        tfb[1] = S.fb[j]
+        for c in range(3):
+            S.w[0][c] = tw[0][c]
+            S.a[0][c] = ta[0][c]
+            S.b[0][c] = tb[0][c]
+            S.w[1][c] = tw[1][c]
+            S.a[1][c] = ta[1][c]
+            S.b[1][c] = tb[1][c]
+        S.fa[0] = tfa[0]
+        S.fb[0] = tfb[0]
+        S.fa[1] = tfa[1]
+        S.fb[1] = tfb[1]
+        _set_point(S, 2, w, a, b, ia, ib)
+        for c in range(3):
+            S.lam[c] = lam[c]
+            v[c] = vn[c]
+    return -1
+
+
 cdef double FEAT_BASE = 2097152.0      # feat = ia * FEAT_BASE + ib + 1 (exact in a double), 0: none
 
 
@@ -824,7 +965,11 @@ cdef int crust_contact(const ShapeRef* Acore, double crust_a, const double* Ra, 
     cdef double d, depth, h, csum = crust_a + crust_b
     cdef int c, code
     cdef bint warm = feat != NULL and _load_features(Acore, Ra, xa, Bcore, Rb, xb, feat, &S)
-    cdef int r = gjk_distance(Acore, Ra, xa, Bcore, Rb, xb, tol, guess, &S, warm, pa, pb)
+    cdef int r = -1
+    if warm and S.n == 3:
+        r = _warm_triangle(Acore, Ra, xa, Bcore, Rb, xb, tol, &S, guess, pa, pb)
+    if r < 0:
+        r = gjk_distance(Acore, Ra, xa, Bcore, Rb, xb, tol, guess, &S, warm, pa, pb)
     if feat != NULL:
         _store_features(&S, r == GJK_SEPARATED, feat)
     if r == GJK_SEPARATED:
