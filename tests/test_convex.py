@@ -382,12 +382,13 @@ thermo 0
     ref = make(script)
     ref.run(16000)
     ref.command(f"write_restart {tmp_path}/r.bin")
+    at_restart = (ref.pair.ncontacts, ref.modify.find("w").ncontacts)   # contact history crosses it
     ref.run(3000)
     sim = dem.Simulation(screen=False)
     sim.commands(f"read_restart {tmp_path}/r.bin\n"     # the shapes come back from the restart
                  + script.split("set atom 1:8 shape t")[1])
     sim.run(3000)
-    assert ref.pair.ncontacts > 5 and ref.modify.find("w").ncontacts > 5
+    assert at_restart[0] >= 3 and at_restart[1] >= 3
     for name in ("x", "v", "omega", "angmom", "quat"):
         assert np.array_equal(sim.gather(name), ref.gather(name)), name
 
