@@ -10,7 +10,8 @@ direction), i.e. the support of the body scaled by s; its crust is s times the s
 (shape -1, or a table sphere) is a point core with a crust equal to its radius: exact.
 
 History per pair (values[k, 0:9]): the tangential spring xi (3, when ks > 0), then the GJK warm start:
-the last core separation pa - pb (3) and, between two polytopes, the vertex pairs of the last simplex (3)."""
+the direction of the last core separation pa - pb (3, unit; also the pre-test axis) and, between two
+polytopes, the vertex pairs of the last simplex (3)."""
 cimport numpy as cnp
 from libc.math cimport sqrt, fabs
 from dem_contact.law cimport forget, hooke
@@ -192,16 +193,17 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                 for d in range(3):
                     g[d] = hist[k, 3 + d]
                     feat[d] = hist[k, 6 + d]
-                gn = g[0] * g[0] + g[1] * g[1] + g[2] * g[2]
-                if gn > 0.0:
-                    gn = 1.0 / sqrt(gn)
-                    for d in range(3):
-                        u[d] = g[d] * gn
-                else:
+                gn = g[0] * g[0] + g[1] * g[1] + g[2] * g[2]     # a unit axis (stored so: no square root)
+                if gn == 0.0:                    # no axis yet: the line of centres
                     gn = 1.0 / sqrt(r2)
                     for d in range(3):
-                        u[d] = dx[d] * gn
-                        g[d] = dx[d]
+                        g[d] = dx[d] * gn
+                elif fabs(gn - 1.0) > 1e-9:      # (restart files of older versions)
+                    gn = 1.0 / sqrt(gn)
+                    for d in range(3):
+                        g[d] *= gn
+                for d in range(3):
+                    u[d] = g[d]
                 # separating-axis pre-test along u (from j to i): gap = min_A u.a - max_B u.b
                 for d in range(3):
                     sb[d] = -u[d]
@@ -220,8 +222,10 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                 code = crust_contact(&A, ca, &rot[i, 0], &x[i, 0], &B, cb, &rot[j, 0], &x[j, 0], tol, g,
                                      &feat[0], &delta, n, p)
                 if advance:          # warm start; a setup pass changes no history
+                    gn = g[0] * g[0] + g[1] * g[1] + g[2] * g[2]
+                    gn = 1.0 / sqrt(gn) if gn > 0.0 else 0.0
                     for d in range(3):
-                        hist[k, 3 + d] = g[d]
+                        hist[k, 3 + d] = g[d] * gn
                         hist[k, 6 + d] = feat[d]
                 if code == CONTACT_NONE:
                     if use_xi and advance:
