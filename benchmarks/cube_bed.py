@@ -10,7 +10,7 @@ the cubes, 20 % of the volume; cubes randomly oriented), in a box periodic in x 
 for N = 1000) with a floor, kn = 1e5 N/m, en = 0.73, mu = 0.55, density 2500, dt = 2e-6 s (Table 5/6),
 then settled under gravity for --settle steps (written to a restart once). The settled beds are timed for --steps steps, alternating cube and sphere runs; the
 figure is the median of the paired ratios of the loop time per particle-step (and of the pair stage
-alone). The separating-axis pre-test and the GJK calls per step are reported too.
+alone). The GJK calls, separating-axis pre-tests and margin skips per step are reported too.
 """
 import argparse
 import os
@@ -86,7 +86,7 @@ def timed(kind, path, steps):
     extra = {}
     if kind == "cube":
         p = sim.pair
-        extra = {"gjk": p.ngjk / steps, "pretest": p.nsep / steps}
+        extra = {"gjk": p.ngjk / steps, "pretest": p.nsep / steps, "skip": p.nskip / steps}
     return {"loop": loop / (n * steps), "pair": up.timers["pair"] / (n * steps),
             "integrate": up.timers["integrate"] / (n * steps), "contacts": sim.pair.ncontacts,
             "ke": sim.thermo_keyword("ke"), **extra}
@@ -115,8 +115,9 @@ def main(argv=None):
         ratios.append(c["loop"] / s["loop"])
         pair_ratios.append(c["pair"] / s["pair"])
         print(f"run {r + 1}: cubes {c['loop'] * 1e6:.3f} us/particle-step (pair {c['pair'] * 1e6:.3f}, "
-              f"integrate {c['integrate'] * 1e6:.3f}; {c['contacts']} contacts, {c['gjk']:.0f} GJK calls "
-              f"and {c['pretest']:.0f} pre-test rejections per step), spheres {s['loop'] * 1e6:.3f} "
+              f"integrate {c['integrate'] * 1e6:.3f}; {c['contacts']} contacts, {c['gjk']:.0f} GJK calls, "
+              f"{c['pretest']:.0f} pre-test rejections and {c['skip']:.0f} pairs skipped on their margin "
+              f"per step), spheres {s['loop'] * 1e6:.3f} "
               f"(pair {s['pair'] * 1e6:.3f}, integrate {s['integrate'] * 1e6:.3f}; {s['contacts']} "
               f"contacts): ratio {ratios[-1]:.2f} (pair {pair_ratios[-1]:.2f})", flush=True)
     print(f"cube bed / sphere bed, cost per particle-step: {statistics.median(ratios):.2f}x "
