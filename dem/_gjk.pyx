@@ -831,12 +831,7 @@ cdef int _warm_triangle(const ShapeRef* A, const double* Ra, const double* xa,
     cdef double e2[3]
     cdef double lam[3]
     cdef double vn[3]
-    cdef double vv, vw, maxw2, best_vv
-    cdef double tw[3][3]
-    cdef double ta[3][3]
-    cdef double tb[3][3]
-    cdef int tfa[3]
-    cdef int tfb[3]
+    cdef double vv, vw, maxw2
     cdef int c, ia, ib, it, e, i, j, k
     if not _inside(S.w[0], S.w[1], S.w[2], S.lam, v):
         return -1
@@ -884,31 +879,11 @@ cdef int _warm_triangle(const ShapeRef* A, const double* Ra, const double* xa,
             _set_point(S, 3, w, a, b, ia, ib)
             S.n = 4
             return -1
-        for c in range(3):              # new triangle (S_i, S_j, w)
-            tw[0][c] = S.w[i][c]
-            ta[0][c] = S.a[i][c]
-            tb[0][c] = S.b[i][c]
-            tw[1][c] = S.w[j][c]
-            ta[1][c] = S.a[j][c]
-            tb[1][c] = S.b[j][c]
-        tfa[0] = S.fa[i]
-        tfb[0] = S.fb[i]
-        tfa[1] = S.fa[j]
-        tfb[1] = S.fb[j]
+        _set_point(S, k, w, a, b, ia, ib)     # new triangle (S_i, S_j, w): w replaces S_k
+        S.lam[i] = lam[0]
+        S.lam[j] = lam[1]
+        S.lam[k] = lam[2]
         for c in range(3):
-            S.w[0][c] = tw[0][c]
-            S.a[0][c] = ta[0][c]
-            S.b[0][c] = tb[0][c]
-            S.w[1][c] = tw[1][c]
-            S.a[1][c] = ta[1][c]
-            S.b[1][c] = tb[1][c]
-        S.fa[0] = tfa[0]
-        S.fb[0] = tfb[0]
-        S.fa[1] = tfa[1]
-        S.fb[1] = tfb[1]
-        _set_point(S, 2, w, a, b, ia, ib)
-        for c in range(3):
-            S.lam[c] = lam[c]
             v[c] = vn[c]
     return -1
 
