@@ -16,7 +16,7 @@ cimport numpy as cnp
 from libc.math cimport sqrt, fabs
 from dem_contact.law cimport forget, hooke
 from dem.shapes._support cimport ShapeRef, quat_to_rot, support_world
-from dem._gjk cimport crust_contact, CONTACT_NONE
+from dem._gjk cimport crust_contact, CONTACT_NONE, CONTACT_CRUST
 
 ctypedef cnp.int64_t i64
 
@@ -222,10 +222,15 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                 code = crust_contact(&A, ca, &rot[i, 0], &x[i, 0], &B, cb, &rot[j, 0], &x[j, 0], tol, g,
                                      &feat[0], &delta, n, p)
                 if advance:          # warm start; a setup pass changes no history
-                    gn = g[0] * g[0] + g[1] * g[1] + g[2] * g[2]
-                    gn = 1.0 / sqrt(gn) if gn > 0.0 else 0.0
+                    if code == CONTACT_CRUST:
+                        for d in range(3):   # n is g / |g| already
+                            hist[k, 3 + d] = n[d]
+                    else:
+                        gn = g[0] * g[0] + g[1] * g[1] + g[2] * g[2]
+                        gn = 1.0 / sqrt(gn) if gn > 0.0 else 0.0
+                        for d in range(3):
+                            hist[k, 3 + d] = g[d] * gn
                     for d in range(3):
-                        hist[k, 3 + d] = g[d] * gn
                         hist[k, 6 + d] = feat[d]
                 if code == CONTACT_NONE:
                     if use_xi and advance:
