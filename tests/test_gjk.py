@@ -233,10 +233,9 @@ def test_distance_against_coal_10000_pairs():
         err = (ub - lb) / d if coal_outside else abs(d - dc) / d
         if err > DIST_RTOL:
             ours_off.append((A, B, err))
-    # Vanilla GJK can stall on a curved body against an edge, where every new support point lands beside an
-    # old one and progress is quadratically small (seen: 1 pair in 10^4, box edge vs sphere, 7e-9).
-    assert len(ours_off) <= 3, ours_off
-    assert all(err < 1e-8 for _, _, err in ours_off), ours_off
+    # (Vanilla GJK can stall on a curved body against an edge, where every new support point lands beside an
+    # old one: 1 pair in 10^4 here, box edge vs sphere, 6.8e-9, before gjk_distance restarted stalled runs.)
+    assert not ours_off, ours_off
 
 
 def test_distance_certified_bracket_curved():
