@@ -25,7 +25,8 @@ cdef struct Simplex:
 
 cdef int gjk_distance(const ShapeRef* A, const double* Ra, const double* xa,
                       const ShapeRef* B, const double* Rb, const double* xb,
-                      double tol, double* v, Simplex* S, bint warm, double* pa, double* pb) noexcept nogil
+                      double tol, double sep, double* v, Simplex* S, bint warm, double* pa,
+                      double* pb) noexcept nogil
 
 cdef int epa_penetration(const ShapeRef* A, const double* Ra, const double* xa,
                          const ShapeRef* B, const double* Rb, const double* xb,

@@ -24,7 +24,7 @@ use EPA on the cores, depth + crust_a + crust_b (exact for the rounded bodies, c
 """
 import numpy as np
 cimport numpy as cnp
-from libc.math cimport sqrt, fabs, cos, sin
+from libc.math cimport sqrt, fabs, cos, sin, INFINITY
 from dem.shapes._support cimport ShapeRef, support_world, support_world_id, vertex_world, quat_to_rot, NPARAM
 
 cdef enum:
@@ -287,8 +287,10 @@ cdef inline void _witness(const Simplex* S, double* pa, double* pb) noexcept nog
 
 cdef int gjk_distance(const ShapeRef* A, const double* Ra, const double* xa,
                       const ShapeRef* B, const double* Rb, const double* xb,
-                      double tol, double* v, Simplex* S, bint warm, double* pa, double* pb) noexcept nogil:
-    """Closest points of A and B (see _gjk_run). A run that stops without closing the duality gap (a stall:
+                      double tol, double sep, double* v, Simplex* S, bint warm, double* pa,
+                      double* pb) noexcept nogil:
+    """Closest points of A and B (see _gjk_run). sep: stop as soon as the distance is proved >= sep (a contact
+    test needs no more; v then has the best upper bound's length, pa and pb are not the closest points). A run that stops without closing the duality gap (a stall:
     on a curved body against an edge, new support points can land beside old ones and progress becomes
     quadratically small) is run once more from a fresh simplex along its best direction, which resumes
     linear convergence; the smaller upper bound is kept."""
@@ -298,12 +300,12 @@ cdef int gjk_distance(const ShapeRef* A, const double* Ra, const double* xa,
     cdef double pb2[3]
     cdef bint closed, closed2
     cdef int c
-    cdef int r = _gjk_run(A, Ra, xa, B, Rb, xb, tol, v, S, warm, pa, pb, &closed)
+    cdef int r = _gjk_run(A, Ra, xa, B, Rb, xb, tol, sep, v, S, warm, pa, pb, &closed)
     if r != GJK_SEPARATED or closed:
         return r
     for c in range(3):
         v2[c] = v[c]
-    if (_gjk_run(A, Ra, xa, B, Rb, xb, tol, v2, &S2, False, pa2, pb2, &closed2) == GJK_SEPARATED
+    if (_gjk_run(A, Ra, xa, B, Rb, xb, tol, sep, v2, &S2, False, pa2, pb2, &closed2) == GJK_SEPARATED
             and _dot(v2, v2) < _dot(v, v)):
         _copy_simplex(S, &S2)
         for c in range(3):
@@ -315,7 +317,7 @@ cdef int gjk_distance(const ShapeRef* A, const double* Ra, const double* xa,
 
 cdef int _gjk_run(const ShapeRef* A, const double* Ra, const double* xa,
                   const ShapeRef* B, const double* Rb, const double* xb,
-                  double tol, double* v, Simplex* S, bint warm, double* pa, double* pb,
+                  double tol, double sep, double* v, Simplex* S, bint warm, double* pa, double* pb,
                   bint* closed) noexcept nogil:
     """Closest points of A and B. On entry v is a guess of pa - pb (zero: use xa - xb), or, if warm, S holds a
     start simplex (S.n >= 1 points a, b, w = a - b, e.g. the last step's vertices at the new pose: a steady
@@ -388,7 +390,7 @@ cdef int _gjk_run(const ShapeRef* A, const double* Ra, const double* xa,
                 lb = lbi
                 for c in range(3):
                     nlb[c] = v[c] * rs
-        if vv - vw <= tol * vv or lb * lb >= gap2 * best_vv:   # duality gap (|v|best - lb <= tol |v|best)
+        if vv - vw <= tol * vv or lb * lb >= gap2 * best_vv or lb >= sep:  # duality gap, or far enough
             closed[0] = True
             break
         dup = False
@@ -792,7 +794,7 @@ cdef int signed_distance(const ShapeRef* A, const double* Ra, const double* xa,
     cdef Simplex S
     cdef double depth
     cdef double n[3]
-    cdef int r = gjk_distance(A, Ra, xa, B, Rb, xb, tol, guess, &S, False, pa, pb)
+    cdef int r = gjk_distance(A, Ra, xa, B, Rb, xb, tol, INFINITY, guess, &S, False, pa, pb)
     if r == GJK_SEPARATED:
         dist[0] = sqrt(_dot(guess, guess))
         return r
@@ -846,7 +848,7 @@ cdef inline void _set_point(Simplex* S, int k, const double* w, const double* a,
 
 
 cdef int _warm_triangle(const ShapeRef* A, const double* Ra, const double* xa,
-                        const ShapeRef* B, const double* Rb, const double* xb, double tol,
+                        const ShapeRef* B, const double* Rb, const double* xb, double tol, double sep,
                         Simplex* S, double* v, double* pa, double* pb) noexcept nogil:
     """GJK for the common case of a lasting contact between polytopes, in straight-line code: the closest
     point stays inside a triangle. The stored triangle is checked by one support query; when the gap stays
@@ -880,7 +882,7 @@ cdef int _warm_triangle(const ShapeRef* A, const double* Ra, const double* xa,
             d[c] = -v[c]
         _minkowski_id(A, Ra, xa, B, Rb, xb, d, a, b, w, &ia, &ib)
         vw = _dot(v, w)
-        if vv - vw <= tol * vv:
+        if vv - vw <= tol * vv or (vw > 0.0 and vw * vw >= sep * sep * vv):   # converged, or >= sep apart
             _witness(S, pa, pb)
             _sub(pa, pb, v)
             return GJK_SEPARATED
@@ -974,9 +976,9 @@ cdef int crust_contact(const ShapeRef* Acore, double crust_a, const double* Ra, 
     cdef bint warm = feat != NULL and _load_features(Acore, Ra, xa, Bcore, Rb, xb, feat, &S)
     cdef int r = -1
     if warm and S.n == 3:
-        r = _warm_triangle(Acore, Ra, xa, Bcore, Rb, xb, tol, &S, guess, pa, pb)
+        r = _warm_triangle(Acore, Ra, xa, Bcore, Rb, xb, tol, csum, &S, guess, pa, pb)
     if r < 0:
-        r = gjk_distance(Acore, Ra, xa, Bcore, Rb, xb, tol, guess, &S, warm, pa, pb)
+        r = gjk_distance(Acore, Ra, xa, Bcore, Rb, xb, tol, csum, guess, &S, warm, pa, pb)
     if feat != NULL:
         _store_features(&S, r == GJK_SEPARATED, feat)
     if r == GJK_SEPARATED:
