@@ -314,3 +314,157 @@ def test_pictures_and_series(tmp_path):
                         "-o", str(tmp_path / "a")])
     for name in ("a_vmean.png", "a_coordination.png", "a_pdf.png"):
         assert (tmp_path / name).exists()
+
+
+# ----- shaped particles against the drum ----------------------------------------------------------------
+KN = 1e5
+
+
+def _drum_contact(shape_cmd, pos, quat, point="deepest", ends=""):
+    """Forces of fix wall/drum (drum at rest, axis y through the origin) on one shaped particle at rest,
+    and the posed body (world vertices or None, the table row for the support function)."""
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+        boundary f f f
+        region box block -0.06 0.06 -0.03 0.03 -0.06 0.06
+        create_box 1 box
+        {shape_cmd}
+        create_atoms 1 single {float(pos[0])!r} {float(pos[1])!r} {float(pos[2])!r} shape s density 2500 quat {' '.join(repr(float(c)) for c in quat)}
+        pair_style convex/gjk
+        pair_coeff * * kn {KN} en 0.5 mu 0.5
+        fix drum all wall/drum y 0 0 {R} point {point} {ends} kn {KN} en 0.5 mu 0.5
+        timestep 1e-6
+        thermo 0
+        run 0
+    """)
+    a = sim.atom.data
+    a["f"][:] = 0.0
+    a["torque"][:] = 0.0
+    fix = sim.modify.find("drum")
+    fix.compute(False)
+    return sim, fix, a["f"][0].copy(), a["torque"][0].copy()
+
+
+def _posed(sim):
+    """World rotation, centre and the shape-table row of particle 0."""
+    from dem import shape_command
+    from dem.shapes._support import rotation_matrix
+    a = sim.atom.data
+    t = shape_command.kernel_arrays(sim)
+    s = a["shape"][0]
+    Rm = rotation_matrix(np.ascontiguousarray(a["quat"][0])) * (a["radius"][0] / t["radius"][s])
+    verts = t["verts"][t["voff"][s]:t["voff"][s] + t["nv"][s]]
+    return Rm, a["x"][0].copy(), t["kind"][s], t["params"][s], np.ascontiguousarray(verts)
+
+
+def _farthest_independent(sim):
+    """Largest distance from the drum axis over the posed body, the radial unit vector there and the point's
+    axial coordinate: over the vertices of a polytope; for a curved body the maximum over the radial
+    direction u (angle t) of its support value h(u) + u.x (the body's support function, refined by a
+    bounded scalar search)."""
+    from scipy.optimize import minimize_scalar
+    from dem.shapes._support import support_points
+    Rm, x, kind, params, verts = _posed(sim)
+    if kind == 1:          # box: its 8 corners
+        h = params[:3]
+        verts = np.array([[sx * h[0], sy * h[1], sz * h[2]] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+    if len(verts):
+        W = verts @ Rm.T + x
+        rho = np.hypot(W[:, 0], W[:, 2])
+        k = np.argmax(rho)
+        return rho[k], np.array([W[k, 0], 0.0, W[k, 2]]) / rho[k], W[k, 1]
+
+    def g(t):
+        u = np.array([math.cos(t), 0.0, math.sin(t)])
+        p = support_points(int(kind), np.ascontiguousarray(params), verts.reshape(-1, 3), (Rm.T @ u)[None, :])[0]
+        return -(u @ (Rm @ p) + u @ x)
+    ts = np.linspace(-math.pi, math.pi, 7201)
+    t0 = ts[np.argmin([g(t) for t in ts])]
+    r = minimize_scalar(g, bounds=(t0 - 1e-3, t0 + 1e-3), method="bounded", options={"xatol": 1e-13})
+    u = np.array([math.cos(r.x), 0.0, math.sin(r.x)])
+    p = Rm @ support_points(int(kind), np.ascontiguousarray(params), verts.reshape(-1, 3), (Rm.T @ u)[None, :])[0]
+    return -r.fun, u, p[1] + x[1]
+
+
+@pytest.mark.parametrize("shape_cmd, curved", [
+    ("shape s cube 0.004", False),
+    ("shape s box 0.002 0.005 0.003", False),
+    ("shape s tetrahedron 0.005", False),
+    ("shape s pinacoid 0.006 0.003 0.002 60", False),
+    ("shape s cylinder 0.0015 0.006", True),
+    ("shape s ellipsoid 0.003 0.002 0.0015", True),
+])
+def test_drum_wall_pushes_shaped_particles_from_their_farthest_point(shape_cmd, curved):
+    """A shaped particle at rest, at random orientations, across the drum wall: the wall pushes with
+    k_n delta (no velocity, no damping) towards the axis from the point of the body farthest from it,
+    delta = rho_max - R, found independently (all vertices of a polytope; for a curved body, the radial
+    direction maximising its support value). Polytopes: the same vertex, so exact to round-off (1e-12);
+    curved bodies: the kernel iterates p = support(radial direction at p) to round-off; the reference
+    maximum is flat to second order, so its value (delta, |F|) is exact to 1e-9 but its direction only to
+    about sqrt(eps) (seen: 4e-9 rad), hence 1e-7 on the force components. The torque is the lever from
+    the centre of mass to the contact point, midway in the overlap, times that force."""
+    rng = np.random.default_rng(17)
+    checked = 0
+    for _ in range(12):
+        q = rng.normal(size=4)
+        q /= np.linalg.norm(q)
+        phi = rng.uniform(-math.pi, math.pi)
+        u0 = np.array([math.sin(phi), 0.0, -math.cos(phi)])
+        sim, _, _, _ = _drum_contact(shape_cmd, (0.0, 0.0, 0.0), q)
+        Rm, _, kind, params, verts = _posed(sim)
+        from dem.shapes._support import support_points
+        reach = u0 @ (Rm @ support_points(int(kind), np.ascontiguousarray(params), verts.reshape(-1, 3),
+                                          (Rm.T @ u0)[None, :])[0])
+        pos = (R - reach + rng.uniform(2e-6, 2e-5)) * u0      # the body pokes through by a few microns
+        sim, fix, f, tq = _drum_contact(shape_cmd, pos, q)
+        rho, u, y = _farthest_independent(sim)
+        delta = rho - R
+        assert delta > 0 and fix.ncontacts == 1
+        expected = -KN * delta * u
+        tol = 1e-7 if curved else 1e-12
+        assert np.linalg.norm(f) == pytest.approx(KN * delta, rel=1e-9 if curved else 1e-12)
+        np.testing.assert_allclose(f, expected, rtol=0, atol=tol * KN * delta)
+        point = (R + 0.5 * delta) * u + [0.0, y, 0.0]
+        np.testing.assert_allclose(tq, np.cross(point - pos, expected), rtol=0, atol=tol * KN * delta * 0.01)
+        assert fix.energy == pytest.approx(0.5 * KN * delta ** 2, rel=1e-8 if curved else 1e-12)
+        checked += 1
+    assert checked == 12
+
+
+def test_drum_wall_point_centroid_pushes_a_face_at_its_middle():
+    """A cube with a face towards the drum wall touches it along its two outer edges (the wall is curved):
+    `point deepest` (Grains3D) pushes at one corner, a lever of half the edge across the face, so a
+    torque of about (a/2) |F|; `point centroid` pushes at the depth-weighted centroid of the four corners
+    beyond the wall, which by symmetry lies on the line of centres: no torque (1e-12 |F| a), and the same
+    force."""
+    a = 0.004
+    depth = 5e-6
+    h = a / 2
+    zc = -(math.sqrt(R * R - h * h) - h) - depth          # outer face `depth` beyond the wall at its edges
+    delta = math.hypot(h, math.sqrt(R * R - h * h) + depth) - R
+    pos = (0.0, 0.0, zc)
+    q = (1.0, 0.0, 0.0, 0.0)
+    _, _, fd, td = _drum_contact(f"shape s cube {a}", pos, q, "deepest")
+    _, _, fc, tc = _drum_contact(f"shape s cube {a}", pos, q, "centroid")
+    assert np.linalg.norm(fd) == pytest.approx(np.linalg.norm(fc), rel=1e-12)
+    assert np.linalg.norm(fc) == pytest.approx(KN * delta, rel=1e-9)
+    assert np.linalg.norm(td) > 0.4 * h * np.linalg.norm(fd)
+    assert np.linalg.norm(tc) < 1e-12 * a * np.linalg.norm(fc)
+
+
+def test_drum_end_walls_push_shaped_particles_from_their_deepest_point():
+    """The flat ends of the drum: a tilted cube poking through the end at y = LO by d pushes back with k_n d
+    along +y, d = LO - (lowest corner), exact."""
+    a = 0.004
+    rng = np.random.default_rng(3)
+    q = rng.normal(size=4)
+    q /= np.linalg.norm(q)
+    sim, _, _, _ = _drum_contact(f"shape s cube {a}", (0.0, 0.0, -0.02), q, ends="ends -0.02 0.02 fixed")
+    Rm = _posed(sim)[0]
+    corners = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * a / 2 @ Rm.T
+    reach = -corners[:, 1].min()
+    d = 7e-6
+    sim, fix, f, _ = _drum_contact(f"shape s cube {a}", (0.0, -0.02 + reach - d, -0.02), q,
+                                   ends="ends -0.02 0.02 fixed")
+    assert fix.ncontacts == 1
+    np.testing.assert_allclose(f, [0.0, KN * d, 0.0], rtol=0, atol=1e-9 * KN * d)

@@ -5,7 +5,7 @@ A shape is (kind, params[NPARAM], verts, nverts) in its body frame (centre of ma
 along the principal axes). ``params[MARGIN]`` erodes any kind by a ball: support(d) - margin*d/|d|, used
 for the cores of smooth shapes (see dem/shapes/base.py). Kind codes match dem/shapes/base.py.
 """
-from libc.math cimport copysign, signbit
+from libc.math cimport copysign, signbit, sqrt
 
 cdef enum:
     SPHERE = 0
@@ -87,3 +87,74 @@ cdef inline bint vertex_world(const ShapeRef* sh, const double* R, const double*
     out[1] = R[3] * p[0] + R[4] * p[1] + R[5] * p[2] + x[1]
     out[2] = R[6] * p[0] + R[7] * p[1] + R[8] * p[2] + x[2]
     return True
+
+
+cdef inline bint candidate_point(const ShapeRef* S, const double* R, const double* x, const double* dn, int k,
+                                 double* out) noexcept nogil:
+    """k-th point of a posed body that can touch a wall lying in the direction dn (world) from it: the
+    vertices of a box or polyhedron; for a cylinder its two rim points (bottom, top) and for a cone its
+    rim point and apex, at the rim's azimuth towards dn. False past the last one (and for smooth kinds,
+    which touch at their support point only). Walls average these over the ones beyond them (`point
+    centroid`)."""
+    cdef double q[3]
+    cdef double db0, db1, nxy
+    cdef int kind = S.kind
+    if kind == BOX:
+        if k >= 8:
+            return False
+        q[0] = S.params[0] if k & 1 else -S.params[0]
+        q[1] = S.params[1] if k & 2 else -S.params[1]
+        q[2] = S.params[2] if k & 4 else -S.params[2]
+    elif kind == POLYHEDRON:
+        if k >= S.nverts:
+            return False
+        q[0] = S.verts[3 * k]
+        q[1] = S.verts[3 * k + 1]
+        q[2] = S.verts[3 * k + 2]
+    elif (kind == CYLINDER or kind == CONE) and k < 2:
+        db0 = R[0] * dn[0] + R[3] * dn[1] + R[6] * dn[2]
+        db1 = R[1] * dn[0] + R[4] * dn[1] + R[7] * dn[2]
+        nxy = sqrt(db0 * db0 + db1 * db1)
+        if nxy > 1e-12 * sqrt(db0 * db0 + db1 * db1 + (R[2] * dn[0] + R[5] * dn[1] + R[8] * dn[2]) ** 2):
+            q[0] = S.params[0] * db0 / nxy
+            q[1] = S.params[0] * db1 / nxy
+        else:                                               # a disc face-on: its centre
+            q[0] = 0.0
+            q[1] = 0.0
+        if kind == CYLINDER:
+            q[2] = -S.params[1] if k == 0 else S.params[1]
+        elif k == 0:
+            q[2] = S.params[1]
+        else:
+            q[0] = 0.0
+            q[1] = 0.0
+            q[2] = S.params[2]
+    else:
+        return False
+    out[0] = R[0] * q[0] + R[1] * q[1] + R[2] * q[2] + x[0]
+    out[1] = R[3] * q[0] + R[4] * q[1] + R[5] * q[2] + x[1]
+    out[2] = R[6] * q[0] + R[7] * q[1] + R[8] * q[2] + x[2]
+    return True
+
+
+cdef inline void plane_centroid(const ShapeRef* S, const double* R, const double* x, const double* dn, int a,
+                                double side, double pos, double tol, double* c) noexcept nogil:
+    """Depth-weighted centroid of the candidate points below the plane x[a] = pos facing side (+1, -1), each
+    weighted by its depth + tol (tol, a round-off margin, makes points level with the deepest one count
+    alike when the overlap starts); c is left unchanged when there is none."""
+    cdef double acc[3]
+    cdef double q[3]
+    cdef double wsum = 0.0, depth
+    cdef int k = 0
+    acc[0] = acc[1] = acc[2] = 0.0
+    while candidate_point(S, R, x, dn, k, q):
+        k += 1
+        depth = tol - side * (q[a] - pos)
+        if depth > 0.0:
+            acc[0] += depth * q[0]
+            acc[1] += depth * q[1]
+            acc[2] += depth * q[2]
+            wsum += depth
+    if wsum > 0.0:
+        for k in range(3):
+            c[k] = acc[k] / wsum

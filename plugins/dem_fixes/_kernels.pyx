@@ -14,69 +14,9 @@ moves continuously as the body tilts (a single corner below the plane is the dee
 cimport numpy as cnp
 from libc.math cimport sqrt
 from dem_contact.law cimport forget, hooke
-from dem.shapes._support cimport ShapeRef, quat_to_rot, support_world
+from dem.shapes._support cimport ShapeRef, plane_centroid, quat_to_rot, support_world
 
 ctypedef cnp.int64_t i64
-
-
-cdef inline void _accumulate(const double* R, const double* x, const double* q, int a, double side,
-                             double pos, double tol, double* acc, double* wsum) noexcept nogil:
-    """Add body point q (posed by R, x) weighted by its depth below the plane + tol, if positive (tol, a
-    round-off margin, makes points level with the deepest one count alike when the overlap starts)."""
-    cdef double w0 = R[0] * q[0] + R[1] * q[1] + R[2] * q[2] + x[0]
-    cdef double w1 = R[3] * q[0] + R[4] * q[1] + R[5] * q[2] + x[1]
-    cdef double w2 = R[6] * q[0] + R[7] * q[1] + R[8] * q[2] + x[2]
-    cdef double depth = tol - side * ((w0 if a == 0 else (w1 if a == 1 else w2)) - pos)
-    if depth > 0.0:
-        acc[0] += depth * w0
-        acc[1] += depth * w1
-        acc[2] += depth * w2
-        wsum[0] += depth
-
-
-cdef inline void _centroid(const ShapeRef* S, const double* R, const double* x, const double* dn, int a,
-                           double side, double pos, double tol, double* c) noexcept nogil:
-    """Depth-weighted centroid of the candidate points below the plane (c is left unchanged for smooth
-    kinds or when none is found)."""
-    cdef double acc[3]
-    cdef double q[3]
-    cdef double wsum = 0.0, db0, db1, nxy
-    cdef int k, kind = S.kind
-    acc[0] = acc[1] = acc[2] = 0.0
-    if kind == 1:                                           # box: 8 corners
-        for k in range(8):
-            q[0] = S.params[0] if k & 1 else -S.params[0]
-            q[1] = S.params[1] if k & 2 else -S.params[1]
-            q[2] = S.params[2] if k & 4 else -S.params[2]
-            _accumulate(R, x, q, a, side, pos, tol, acc, &wsum)
-    elif kind == 6:                                         # polyhedron: vertices
-        for k in range(S.nverts):
-            _accumulate(R, x, &S.verts[3 * k], a, side, pos, tol, acc, &wsum)
-    elif kind == 2 or kind == 3:                            # cylinder / cone: rim points (+ apex)
-        db0 = R[0] * dn[0] + R[3] * dn[1] + R[6] * dn[2]
-        db1 = R[1] * dn[0] + R[4] * dn[1] + R[7] * dn[2]
-        nxy = sqrt(db0 * db0 + db1 * db1)
-        if nxy > 1e-12 * sqrt(db0 * db0 + db1 * db1 + (R[2] * dn[0] + R[5] * dn[1] + R[8] * dn[2]) ** 2):
-            q[0] = S.params[0] * db0 / nxy
-            q[1] = S.params[0] * db1 / nxy
-        else:                                               # a disc face-on: its centre
-            q[0] = 0.0
-            q[1] = 0.0
-        if kind == 2:
-            q[2] = -S.params[1]
-            _accumulate(R, x, q, a, side, pos, tol, acc, &wsum)
-            q[2] = S.params[1]
-            _accumulate(R, x, q, a, side, pos, tol, acc, &wsum)
-        else:
-            q[2] = S.params[1]
-            _accumulate(R, x, q, a, side, pos, tol, acc, &wsum)
-            q[0] = 0.0
-            q[1] = 0.0
-            q[2] = S.params[2]
-            _accumulate(R, x, q, a, side, pos, tol, acc, &wsum)
-    if wsum > 0.0:
-        for k in range(3):
-            c[k] = acc[k] / wsum
 
 
 def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1] omega,
@@ -147,7 +87,7 @@ def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, 
                     if ov > maxov:
                         maxov = ov
                     if centroid:
-                        _centroid(&S, R, &x[i, 0], dn, a, side[w], position[w], 1e-9 * radius[i], p)
+                        plane_centroid(&S, R, &x[i, 0], dn, a, side[w], position[w], 1e-9 * radius[i], p)
                     p[a] = position[w] - 0.5 * delta * side[w]    # contact point midway in the overlap
                     for d in range(3):
                         l[d] = p[d] - x[i, d]

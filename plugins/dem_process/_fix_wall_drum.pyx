@@ -1,9 +1,22 @@
 # cython: language_level=3
 """Particle-wall contacts with a rotating cylinder (particles inside) and its optional flat end walls,
 with the shared Grains3D law (m_ij = m_i against a wall). The wall surface moves: its velocity at the
-contact point, Omega e_axis x (p - centre), enters the relative velocity, so friction drives the bed."""
+contact point, Omega e_axis x (p - centre), enters the relative velocity, so friction drives the bed.
+
+Shaped particles (shape table rows that are not spheres) touch a wall at their deepest point: against a
+flat end, the support point along the outward normal; against the cylinder, the point of the body
+farthest from the axis: the farthest vertex of a polytope; on a curved body, found by iterating
+p = support(radial direction of p) from the radial direction of the centre (a fixed point is where the
+body's normal is radial; each iteration shrinks the error by about size / R_drum). The contact point lies
+midway in the overlap, the lever runs from the centre of mass to it (Grains3D: one point per contact, no
+rolling resistance); `point centroid` moves it to the depth-weighted centroid of the vertices beyond."""
+cimport numpy as cnp
 from libc.math cimport sqrt
 from dem_contact.law cimport forget, hooke
+from dem.shapes._support cimport (ShapeRef, BOX, POLYHEDRON, candidate_point, plane_centroid, quat_to_rot,
+                                  support_world)
+
+ctypedef cnp.int64_t i64
 
 
 cdef inline void _contact(int i, int w, const double[:, ::1] x, const double[:, ::1] v,
@@ -62,23 +75,152 @@ cdef inline void _contact(int i, int w, const double[:, ::1] x, const double[:, 
         stats[1] = delta / (2.0 * radius[i])
 
 
+cdef inline void _contact_shaped(int i, int w, const double[:, ::1] x, const double[:, ::1] v,
+                                 const double[:, ::1] omega, double[:, ::1] f, double[:, ::1] torque,
+                                 const double[::1] radius, const double[::1] rmass, const int[::1] type_,
+                                 const double[:, :, ::1] coeff, double[:, ::1] xi, bint use_history, double dt,
+                                 bint advance, double delta, const double* n, const double* q,
+                                 const double* e, const double* centre, double wall_omega,
+                                 double* stats) noexcept nogil:
+    """One contact of shaped particle i with wall w at point q (absolute), overlap delta, unit normal n from
+    the wall into the particle; lever from the centre of mass to q."""
+    cdef double l[3]
+    cdef double p[3]
+    cdef double vw[3]
+    cdef double vr[3]
+    cdef double fn[3]
+    cdef double ft[3]
+    cdef double F[3]
+    cdef double* h
+    cdef int d
+    for d in range(3):
+        l[d] = q[d] - x[i, d]
+        p[d] = q[d] - centre[d]
+    vw[0] = wall_omega * (e[1] * p[2] - e[2] * p[1])
+    vw[1] = wall_omega * (e[2] * p[0] - e[0] * p[2])
+    vw[2] = wall_omega * (e[0] * p[1] - e[1] * p[0])
+    vr[0] = v[i, 0] + omega[i, 1] * l[2] - omega[i, 2] * l[1] - vw[0]
+    vr[1] = v[i, 1] + omega[i, 2] * l[0] - omega[i, 0] * l[2] - vw[1]
+    vr[2] = v[i, 2] + omega[i, 0] * l[1] - omega[i, 1] * l[0] - vw[2]
+    h = &xi[i, 3 * w] if use_history else NULL
+    stats[3] += hooke(&coeff[w, type_[i], 0], delta, n, vr, rmass[i], h, dt, advance, fn, ft)
+    for d in range(3):
+        F[d] = fn[d] + ft[d]
+        f[i, d] += F[d]
+    torque[i, 0] += l[1] * F[2] - l[2] * F[1]
+    torque[i, 1] += l[2] * F[0] - l[0] * F[2]
+    torque[i, 2] += l[0] * F[1] - l[1] * F[0]
+    stats[2] += (e[0] * (p[1] * F[2] - p[2] * F[1]) + e[1] * (p[2] * F[0] - p[0] * F[2])
+                 + e[2] * (p[0] * F[1] - p[1] * F[0]))
+    stats[0] += 1.0
+    if delta / (2.0 * radius[i]) > stats[1]:
+        stats[1] = delta / (2.0 * radius[i])
+
+
+cdef inline void _farthest_from_axis(const ShapeRef* S, const double* R, const double* xi, int b, int c,
+                                     const double* centre, double* u, double* p) noexcept nogil:
+    """p: the point of the posed body farthest from the axis (the axis is normal to b, c), u: the unit
+    radial direction at p. On entry u is the radial direction of the centre. Polytopes: their farthest
+    vertex. Curved bodies: p = support(radial direction of p), iterated from u."""
+    cdef double rb, rc, rho, best = -1.0
+    cdef double q[3]
+    cdef int it, k = 0
+    if S.kind == BOX or S.kind == POLYHEDRON:
+        while candidate_point(S, R, xi, u, k, q):
+            k += 1
+            rho = (q[b] - centre[b]) ** 2 + (q[c] - centre[c]) ** 2
+            if rho > best:
+                best = rho
+                p[0] = q[0]
+                p[1] = q[1]
+                p[2] = q[2]
+        rho = sqrt(best)
+        if rho > 0.0:
+            u[b] = (p[b] - centre[b]) / rho
+            u[c] = (p[c] - centre[c]) / rho
+        return
+    for it in range(40):              # the error shrinks by ~ size / R_drum per iteration
+        support_world(S, R, xi, u, p)
+        rb = p[b] - centre[b]
+        rc = p[c] - centre[c]
+        rho = sqrt(rb * rb + rc * rc)
+        if rho == 0.0:
+            return
+        rb /= rho
+        rc /= rho
+        if (rb - u[b]) * (rb - u[b]) + (rc - u[c]) * (rc - u[c]) <= 1e-28:
+            return
+        u[b] = rb
+        u[c] = rc
+    support_world(S, R, xi, u, p)
+
+
+cdef inline void _centroid_beyond(const ShapeRef* S, const double* R, const double* xi, int b, int c,
+                                  const double* centre, double rdrum, const double* u, double tol,
+                                  double* q) noexcept nogil:
+    """Depth-weighted centroid of the candidate points (candidate_point) beyond the drum radius, each weighted
+    by its depth + tol (as fix wall/plane's point centroid); q is left unchanged when there is none."""
+    cdef double acc[3]
+    cdef double p[3]
+    cdef double wsum = 0.0, depth
+    cdef int k = 0
+    acc[0] = acc[1] = acc[2] = 0.0
+    while candidate_point(S, R, xi, u, k, p):
+        k += 1
+        depth = tol + sqrt((p[b] - centre[b]) ** 2 + (p[c] - centre[c]) ** 2) - rdrum
+        if depth > 0.0:
+            acc[0] += depth * p[0]
+            acc[1] += depth * p[1]
+            acc[2] += depth * p[2]
+            wsum += depth
+    if wsum > 0.0:
+        for k in range(3):
+            q[k] = acc[k] / wsum
+
+
+cdef inline void _pose(ShapeRef* S, int s, const int[::1] skind, const double[:, ::1] sparams,
+                       const i64[::1] svoff, const int[::1] snv, const double[:, ::1] verts,
+                       const double[:, ::1] quat, int i, double sc, double* R) noexcept nogil:
+    """Shape row s of particle i and its rotation scaled by sc (body -> world)."""
+    cdef int k
+    S.kind = skind[s]
+    S.params = &sparams[s, 0]
+    S.nverts = snv[s]
+    S.verts = &verts[svoff[s], 0]
+    quat_to_rot(&quat[i, 0], R)
+    for k in range(9):
+        R[k] *= sc
+
+
 def drum_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1] omega,
                double[:, ::1] f, double[:, ::1] torque, const double[::1] radius, const double[::1] rmass,
                const int[::1] type_, const int[::1] mask, int groupbit, int nlocal, int axis,
                const double[::1] centre, double rdrum, double wall_omega, int nends,
                double end_lo, double end_hi, bint ends_rotate, const double[:, :, ::1] coeff,
-               double[:, ::1] xi, bint use_history, double dt, bint advance, double[::1] stats):
+               double[:, ::1] xi, bint use_history, double dt, bint advance, double[::1] stats,
+               const double[:, ::1] quat, const int[::1] shape, const int[::1] is_sphere,
+               const int[::1] skind, const double[:, ::1] sparams, const i64[::1] svoff,
+               const int[::1] snv, const double[:, ::1] verts, const double[::1] srad, bint centroid=False):
     """Wall 0: the cylinder of radius rdrum about axis (0, 1, 2) through centre (3 values, the axis
     component unused). Walls 1 and 2 (nends = 2): flat ends at axis = end_lo (facing +) and end_hi (facing
     -), rotating with the drum when ends_rotate. xi: 3 history values per wall per particle.
     stats: [contacts, max overlap / diameter, torque of the walls on the particles about the axis,
-    elastic energy stored in the wall contacts]."""
+    elastic energy stored in the wall contacts]. Shape table arrays (body, not core): see
+    dem.shape_command.SimShapes.kernel_arrays. centroid: contact points of shaped particles at the
+    depth-weighted centroid of their candidate points beyond the wall (fix wall/plane point centroid)."""
     cdef int i, d, w, b = (axis + 1) % 3, c = (axis + 2) % 3
     cdef double rho, gap, delta, endw = wall_omega if ends_rotate else 0.0
     cdef double e[3]
     cdef double n[3]
     cdef double cen[3]
     cdef double st[4]
+    cdef double u[3]
+    cdef double q[3]
+    cdef double R[9]
+    cdef double rho_q
+    cdef int s
+    cdef bint posed
+    cdef ShapeRef S
     st[3] = 0.0
     for d in range(3):
         e[d] = 0.0
@@ -90,6 +232,67 @@ def drum_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, :
             if not (mask[i] & groupbit):
                 continue
             cen[axis] = x[i, axis]
+            s = shape[i]
+            if s >= 0 and not is_sphere[s]:
+                posed = False
+                n[b] = x[i, b] - centre[b]
+                n[c] = x[i, c] - centre[c]
+                rho = sqrt(n[b] * n[b] + n[c] * n[c])
+                if rdrum - rho >= radius[i]:                      # bounding sphere clear of the drum
+                    if use_history and advance:
+                        forget(&xi[i, 0])
+                else:
+                    _pose(&S, s, skind, sparams, svoff, snv, verts, quat, i, radius[i] / srad[s], R)
+                    posed = True
+                    u[axis] = 0.0
+                    u[b] = n[b] / rho if rho > 0.0 else 1.0
+                    u[c] = n[c] / rho if rho > 0.0 else 0.0
+                    _farthest_from_axis(&S, R, &x[i, 0], b, c, cen, u, q)
+                    rho_q = sqrt((q[b] - cen[b]) ** 2 + (q[c] - cen[c]) ** 2)
+                    if rho_q <= rdrum:
+                        if use_history and advance:
+                            forget(&xi[i, 0])
+                    else:
+                        delta = rho_q - rdrum
+                        if centroid:                              # keep the overlap, move the point
+                            _centroid_beyond(&S, R, &x[i, 0], b, c, cen, rdrum, u, 1e-9 * radius[i], q)
+                            rho_q = sqrt((q[b] - cen[b]) ** 2 + (q[c] - cen[c]) ** 2)
+                            u[b] = (q[b] - cen[b]) / rho_q
+                            u[c] = (q[c] - cen[c]) / rho_q
+                        for d in range(3):                        # midway in the overlap, radially
+                            n[d] = -u[d]
+                        q[b] = cen[b] + (rdrum + 0.5 * delta) * u[b]
+                        q[c] = cen[c] + (rdrum + 0.5 * delta) * u[c]
+                        _contact_shaped(i, 0, x, v, omega, f, torque, radius, rmass, type_, coeff, xi,
+                                        use_history, dt, advance, delta, n, q, e, cen, wall_omega, st)
+                for w in range(1, nends + 1):
+                    gap = x[i, axis] - end_lo if w == 1 else end_hi - x[i, axis]
+                    if gap >= radius[i]:
+                        if use_history and advance:
+                            forget(&xi[i, 3 * w])
+                        continue
+                    if not posed:
+                        _pose(&S, s, skind, sparams, svoff, snv, verts, quat, i, radius[i] / srad[s], R)
+                        posed = True
+                    n[0] = 0.0
+                    n[1] = 0.0
+                    n[2] = 0.0
+                    n[axis] = 1.0 if w == 1 else -1.0
+                    for d in range(3):
+                        u[d] = -n[d]
+                    support_world(&S, R, &x[i, 0], u, q)         # deepest point towards the end wall
+                    gap = q[axis] - end_lo if w == 1 else end_hi - q[axis]
+                    if gap >= 0.0:
+                        if use_history and advance:
+                            forget(&xi[i, 3 * w])
+                        continue
+                    if centroid:
+                        plane_centroid(&S, R, &x[i, 0], u, axis, n[axis], end_lo if w == 1 else end_hi,
+                                       1e-9 * radius[i], q)
+                    q[axis] = (end_lo if w == 1 else end_hi) - 0.5 * gap * u[axis]   # midway in the overlap
+                    _contact_shaped(i, w, x, v, omega, f, torque, radius, rmass, type_, coeff, xi,
+                                    use_history, dt, advance, -gap, n, q, e, cen, endw, st)
+                continue
             # cylinder: the gap is R - rho, the normal points to the axis
             n[b] = x[i, b] - centre[b]
             n[c] = x[i, c] - centre[c]

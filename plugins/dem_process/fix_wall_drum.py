@@ -5,6 +5,7 @@ import numpy as np
 
 import dem_contact
 from dem_contact.wall_coeffs import WallCoefficients
+from dem import shape_command
 from dem.args import Args
 from dem.fix import Fix, Stage
 
@@ -15,7 +16,7 @@ RPM = 2.0 * math.pi / 60.0
 
 class FixWallDrum(WallCoefficients, Fix):
     """fix ID group wall/drum AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate]
-        [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
+        [point deepest|centroid] [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
 
     A rotating cylindrical wall (a drum) with the particles inside. AXIS is x, y or z; the axis passes
     through (C1, C2) in the two other coordinates, in x, y, z order (as `region cylinder`); RADIUS is the
@@ -34,7 +35,13 @@ class FixWallDrum(WallCoefficients, Fix):
     Contacts use the Grains3D law with m_ij = m_i and the coefficients given here (the same keywords as
     `pair_coeff`; without them those of each type with itself), a tangential history per particle and
     wall (when ks > 0) that survives rebuilds, restarts and migration, and the rolling resistance of
-    `pair_style sphere` (mu_roll r_i |F_n| against the spin relative to the wall).
+    `pair_style sphere` (mu_roll r_i |F_n| against the spin relative to the wall) for spheres.
+    Particles with a shape (`shape` command) touch the walls at their deepest point (against the drum:
+    the point of the body farthest from the axis), with the lever from their centre of mass to the
+    contact point and no rolling resistance, as in `pair_style convex/gjk`. `point centroid` puts the
+    contact point at the depth-weighted centroid of the body's vertices beyond the wall instead (as
+    `fix wall/plane`): a flat face on the curved drum touches along two edges, and one arbitrary corner
+    would rock the particle.
 
     Redefining the fix (same ID, e.g. `rpm 0` to fill, then `rpm 40` to rotate) keeps the drum angle;
     the ramp starts again from the redefinition. Global state kept for restarts: the drum angle and the
@@ -50,7 +57,7 @@ class FixWallDrum(WallCoefficients, Fix):
 
     style = "wall/drum"
     stages = Stage.POST_FORCE | Stage.END_OF_STEP
-    usage = ("AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate] "
+    usage = ("AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate] [point deepest|centroid] "
              "[kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]")
 
     def __init__(self, sim, fid, group, args):
@@ -68,6 +75,7 @@ class FixWallDrum(WallCoefficients, Fix):
         self.ramp = 0.0
         self.ends = None
         self.ends_rotate = False
+        self.centroid = False
         i, law = 4, []
         while i < len(a):
             key = a[i]
@@ -86,12 +94,17 @@ class FixWallDrum(WallCoefficients, Fix):
                 self.ends = (lo, hi)
                 self.ends_rotate = a[i + 3] == "rotate"
                 i += 4
+            elif key == "point":
+                if a[i + 1] not in ("deepest", "centroid"):
+                    raise a.error(f"point must be deepest or centroid, got '{a[i + 1]}'")
+                self.centroid = a[i + 1] == "centroid"
+                i += 2
             elif key in dem_contact.KEYWORDS:
                 law += a.words[i:i + 2]
                 i += 2
             else:
                 from dem.errors import did_you_mean
-                known = ["rpm", "omega", "ramp", "ends"] + list(dem_contact.KEYWORDS)
+                known = ["rpm", "omega", "ramp", "ends", "point"] + list(dem_contact.KEYWORDS)
                 raise a.error(f"unknown keyword '{key}'{did_you_mean(key, known)}")
         self.parse_law(law)
         self.nwalls = 1 + (2 if self.ends else 0)
@@ -129,6 +142,7 @@ class FixWallDrum(WallCoefficients, Fix):
     def init(self):
         sim = self.sim
         self.init_table(self.nwalls)
+        self.shape_arrays = shape_command.kernel_arrays(sim)
         if self.ends is None and not sim.domain.periodic[self.axis]:
             sim.warning(f"fix {self.id} wall/drum: no end walls and the box is not periodic along "
                         f"{'xyz'[self.axis]}: particles can leave through the open ends")
@@ -140,12 +154,14 @@ class FixWallDrum(WallCoefficients, Fix):
         sim = self.sim
         a = sim.atom.data
         xi = self.history()
+        t = self.shape_arrays
         lo, hi = self.ends if self.ends else (0.0, 0.0)
         _fix_wall_drum.drum_walls(a["x"], a["v"], a["omega"], a["f"], a["torque"], a["radius"], a["rmass"],
                                   a["type"], a["mask"], int(self.groupbit), sim.atom.nlocal, self.axis,
                                   self.centre, self.radius, self.omega, self.nwalls - 1, lo, hi,
                                   self.ends_rotate, self.table, xi, self.use_history, sim.update.dt, advance,
-                                  self.stats)
+                                  self.stats, a["quat"], a["shape"], t["is_sphere"], t["kind"], t["params"],
+                                  t["voff"], t["nv"], t["verts"], t["radius"], self.centroid)
         self.ncontacts = int(self.stats[0])
         self.max_overlap = float(self.stats[1])
         self.torque = float(self.stats[2])
