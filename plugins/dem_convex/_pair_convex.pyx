@@ -141,7 +141,7 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
     cdef double r2, r, rsum, delta, meff, ca, cb, energy = 0.0, ov, maxov = 0.0, fnmag, wmag, mr, rmin, gn
     cdef int nsep = 0, nskip = 0
     cdef double gap
-    cdef bint sph_i, sph_j
+    cdef bint sph_i, sph_j, new_axis
     cdef ShapeRef A, B
     cdef const double* c
     cdef double* h
@@ -192,13 +192,14 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                       srad, &B, &cb)
                 for d in range(3):
                     g[d] = hist[k, 3 + d]
-                    feat[d] = hist[k, 6 + d]
                 gn = g[0] * g[0] + g[1] * g[1] + g[2] * g[2]     # a unit axis (stored so: no square root)
-                if gn == 0.0:                    # no axis yet: the line of centres
+                new_axis = gn == 0.0
+                if new_axis:                     # no axis yet: the line of centres
                     gn = 1.0 / sqrt(r2)
                     for d in range(3):
                         g[d] = dx[d] * gn
                 elif fabs(gn - 1.0) > 1e-9:      # (restart files of older versions)
+                    new_axis = True
                     gn = 1.0 / sqrt(gn)
                     for d in range(3):
                         g[d] *= gn
@@ -213,12 +214,15 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                     nsep += 1
                     if advance:      # (a setup pass forgets no spring: it must not skip the pair later)
                         margin[k] = gap - MARGIN_SAFETY * rsum
-                        for d in range(3):      # the axis stays fixed while the pair is apart
-                            hist[k, 3 + d] = g[d]
+                        if new_axis:            # the axis stays fixed while the pair is apart
+                            for d in range(3):
+                                hist[k, 3 + d] = g[d]
                         if use_xi:
                             forget(&hist[k, 0])
                     continue
                 ngjk += 1
+                for d in range(3):
+                    feat[d] = hist[k, 6 + d]
                 code = crust_contact(&A, ca, &rot[i, 0], &x[i, 0], &B, cb, &rot[j, 0], &x[j, 0], tol, g,
                                      &feat[0], &delta, n, p)
                 if advance:          # warm start; a setup pass changes no history
