@@ -253,6 +253,18 @@ cdef void _reduce(Simplex* S) noexcept nogil:
     S.n = k
 
 
+cdef inline bint _solve(Simplex* S, double* v, double* pa, double* pb) noexcept nogil:
+    """Reduce S to the sub-simplex nearest the origin and set v to its closest point; True (v = 0, pa and pb
+    the witnesses) when S is a tetrahedron holding the origin."""
+    _reduce(S)
+    if S.n == 4:
+        v[0] = v[1] = v[2] = 0.0
+        _witness(S, pa, pb)
+        return True
+    _closest(S, v)
+    return False
+
+
 cdef inline void _copy_simplex(Simplex* dst, const Simplex* src) noexcept nogil:
     """Copy the live points only (a whole-struct copy costs more than a GJK iteration's arithmetic)."""
     cdef int i, c
@@ -345,12 +357,8 @@ cdef int _gjk_run(const ShapeRef* A, const double* Ra, const double* xa,
             ww = _dot(S.w[i], S.w[i])
             if ww > maxw2:
                 maxw2 = ww
-        _reduce(S)
-        if S.n == 4:
-            v[0] = v[1] = v[2] = 0.0
-            _witness(S, pa, pb)
+        if _solve(S, v, pa, pb):
             return GJK_INTERSECT
-        _closest(S, v)
     else:
         if _dot(v, v) == 0.0:
             _sub(xa, xb, v)
@@ -412,12 +420,8 @@ cdef int _gjk_run(const ShapeRef* A, const double* Ra, const double* xa,
         ww = _dot(w, w)
         if ww > maxw2:
             maxw2 = ww
-        _reduce(S)
-        if S.n == 4:
-            v[0] = v[1] = v[2] = 0.0
-            _witness(S, pa, pb)
+        if _solve(S, v, pa, pb):
             return GJK_INTERSECT
-        _closest(S, v)
         vv = _dot(v, v)
         if vv < best_vv:
             best_vv = vv

@@ -32,6 +32,13 @@ cdef void support_world(const ShapeRef* s, const double* R, const double* x, con
 
 
 # inline: GJK's hot path on polytopes (defined here so that the compiler can inline them into the kernels)
+cdef inline void posed_point(const double* R, const double* x, const double* p, double* out) noexcept nogil:
+    """out = R p + x: a body-frame point posed at (R, x)."""
+    out[0] = R[0] * p[0] + R[1] * p[1] + R[2] * p[2] + x[0]
+    out[1] = R[3] * p[0] + R[4] * p[1] + R[5] * p[2] + x[1]
+    out[2] = R[6] * p[0] + R[7] * p[1] + R[8] * p[2] + x[2]
+
+
 cdef inline int support_world_id(const ShapeRef* sh, const double* R, const double* x, const double* d,
                           double* out) noexcept nogil:
     """support_world, returning the vertex index of the support point on a polytope (a box without margin:
@@ -62,9 +69,7 @@ cdef inline int support_world_id(const ShapeRef* sh, const double* R, const doub
         p[0] = sh.verts[3 * best_k]
         p[1] = sh.verts[3 * best_k + 1]
         p[2] = sh.verts[3 * best_k + 2]
-    out[0] = R[0] * p[0] + R[1] * p[1] + R[2] * p[2] + x[0]
-    out[1] = R[3] * p[0] + R[4] * p[1] + R[5] * p[2] + x[1]
-    out[2] = R[6] * p[0] + R[7] * p[1] + R[8] * p[2] + x[2]
+    posed_point(R, x, p, out)
     return best_k
 
 
@@ -83,9 +88,7 @@ cdef inline bint vertex_world(const ShapeRef* sh, const double* R, const double*
         p[2] = sh.verts[3 * vid + 2]
     else:
         return False
-    out[0] = R[0] * p[0] + R[1] * p[1] + R[2] * p[2] + x[0]
-    out[1] = R[3] * p[0] + R[4] * p[1] + R[5] * p[2] + x[1]
-    out[2] = R[6] * p[0] + R[7] * p[1] + R[8] * p[2] + x[2]
+    posed_point(R, x, p, out)
     return True
 
 
@@ -99,18 +102,8 @@ cdef inline bint candidate_point(const ShapeRef* S, const double* R, const doubl
     cdef double q[3]
     cdef double db0, db1, nxy
     cdef int kind = S.kind
-    if kind == BOX:
-        if k >= 8:
-            return False
-        q[0] = S.params[0] if k & 1 else -S.params[0]
-        q[1] = S.params[1] if k & 2 else -S.params[1]
-        q[2] = S.params[2] if k & 4 else -S.params[2]
-    elif kind == POLYHEDRON:
-        if k >= S.nverts:
-            return False
-        q[0] = S.verts[3 * k]
-        q[1] = S.verts[3 * k + 1]
-        q[2] = S.verts[3 * k + 2]
+    if kind == BOX or kind == POLYHEDRON:
+        return vertex_world(S, R, x, k, out)
     elif (kind == CYLINDER or kind == CONE) and k < 2:
         db0 = R[0] * dn[0] + R[3] * dn[1] + R[6] * dn[2]
         db1 = R[1] * dn[0] + R[4] * dn[1] + R[7] * dn[2]
@@ -131,17 +124,31 @@ cdef inline bint candidate_point(const ShapeRef* S, const double* R, const doubl
             q[2] = S.params[2]
     else:
         return False
-    out[0] = R[0] * q[0] + R[1] * q[1] + R[2] * q[2] + x[0]
-    out[1] = R[3] * q[0] + R[4] * q[1] + R[5] * q[2] + x[1]
-    out[2] = R[6] * q[0] + R[7] * q[1] + R[8] * q[2] + x[2]
+    posed_point(R, x, q, out)
     return True
 
 
-cdef inline void plane_centroid(const ShapeRef* S, const double* R, const double* x, const double* dn, int a,
-                                double side, double pos, double tol, double* c) noexcept nogil:
-    """Depth-weighted centroid of the candidate points below the plane x[a] = pos facing side (+1, -1), each
-    weighted by its depth + tol (tol, a round-off margin, makes points level with the deepest one count
-    alike when the overlap starts); c is left unchanged when there is none."""
+cdef struct Surface:
+    # a wall for depth queries: the plane q[a] = pos facing side (+1 or -1), or (cylinder) the inside of
+    # the cylinder of radius r whose axis is normal to coordinates b and c and passes through centre
+    bint cylinder
+    int a, b, c
+    double side, pos, r
+    double centre[3]
+
+
+cdef inline double surface_depth(const Surface* w, const double* q) noexcept nogil:
+    """How far point q lies beyond the wall (negative: in front of it)."""
+    if w.cylinder:
+        return sqrt((q[w.b] - w.centre[w.b]) ** 2 + (q[w.c] - w.centre[w.c]) ** 2) - w.r
+    return -w.side * (q[w.a] - w.pos)
+
+
+cdef inline void centroid_beyond(const ShapeRef* S, const double* R, const double* x, const double* dn,
+                                 const Surface* w, double tol, double* c) noexcept nogil:
+    """Depth-weighted centroid of the candidate points beyond the wall, each weighted by its depth + tol
+    (tol, a round-off margin, makes points level with the deepest one count alike when the overlap starts);
+    c is left unchanged when there is none. The walls' `point centroid`."""
     cdef double acc[3]
     cdef double q[3]
     cdef double wsum = 0.0, depth
@@ -149,7 +156,7 @@ cdef inline void plane_centroid(const ShapeRef* S, const double* R, const double
     acc[0] = acc[1] = acc[2] = 0.0
     while candidate_point(S, R, x, dn, k, q):
         k += 1
-        depth = tol - side * (q[a] - pos)
+        depth = tol + surface_depth(w, q)
         if depth > 0.0:
             acc[0] += depth * q[0]
             acc[1] += depth * q[1]
@@ -158,3 +165,16 @@ cdef inline void plane_centroid(const ShapeRef* S, const double* R, const double
     if wsum > 0.0:
         for k in range(3):
             c[k] = acc[k] / wsum
+
+
+cdef inline void pose_shape(ShapeRef* S, int kind, const double* params, int nverts, const double* verts,
+                            const double* quat, double scale, double* R) noexcept nogil:
+    """S: a body of the shape table (row pointers); R: its rotation (body -> world) times scale."""
+    cdef int k
+    S.kind = kind
+    S.params = params
+    S.nverts = nverts
+    S.verts = verts
+    quat_to_rot(quat, R)
+    for k in range(9):
+        R[k] *= scale

@@ -14,7 +14,7 @@ moves continuously as the body tilts (a single corner below the plane is the dee
 cimport numpy as cnp
 from libc.math cimport sqrt
 from dem_contact.law cimport forget, hooke
-from dem.shapes._support cimport ShapeRef, plane_centroid, quat_to_rot, support_world
+from dem.shapes._support cimport ShapeRef, Surface, centroid_beyond, pose_shape, support_world
 
 ctypedef cnp.int64_t i64
 
@@ -43,7 +43,9 @@ def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, 
     cdef double F[3]
     cdef double R[9]
     cdef ShapeRef S
+    cdef Surface wall
     cdef bint posed
+    wall.cylinder = False
     cdef double* h
     with nogil:
         for i in range(nlocal):
@@ -59,14 +61,8 @@ def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, 
                             forget(&xi[i, 3 * w])
                         continue
                     if not posed:
-                        sc = radius[i] / srad[s]
-                        S.kind = skind[s]
-                        S.params = &sparams[s, 0]
-                        S.nverts = snv[s]
-                        S.verts = &verts[svoff[s], 0]
-                        quat_to_rot(&quat[i, 0], R)
-                        for d in range(9):
-                            R[d] *= sc
+                        pose_shape(&S, skind[s], &sparams[s, 0], snv[s], &verts[svoff[s], 0], &quat[i, 0],
+                                   radius[i] / srad[s], R)
                         posed = True
                     n[0] = 0.0
                     n[1] = 0.0
@@ -87,7 +83,10 @@ def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, 
                     if ov > maxov:
                         maxov = ov
                     if centroid:
-                        plane_centroid(&S, R, &x[i, 0], dn, a, side[w], position[w], 1e-9 * radius[i], p)
+                        wall.a = a
+                        wall.side = side[w]
+                        wall.pos = position[w]
+                        centroid_beyond(&S, R, &x[i, 0], dn, &wall, 1e-9 * radius[i], p)
                     p[a] = position[w] - 0.5 * delta * side[w]    # contact point midway in the overlap
                     for d in range(3):
                         l[d] = p[d] - x[i, d]

@@ -13,8 +13,8 @@ rolling resistance); `point centroid` moves it to the depth-weighted centroid of
 cimport numpy as cnp
 from libc.math cimport sqrt
 from dem_contact.law cimport forget, hooke
-from dem.shapes._support cimport (ShapeRef, BOX, POLYHEDRON, candidate_point, plane_centroid, quat_to_rot,
-                                  support_world)
+from dem.shapes._support cimport (ShapeRef, Surface, BOX, POLYHEDRON, candidate_point, centroid_beyond,
+                                  pose_shape, support_world)
 
 ctypedef cnp.int64_t i64
 
@@ -155,43 +155,6 @@ cdef inline void _farthest_from_axis(const ShapeRef* S, const double* R, const d
     support_world(S, R, xi, u, p)
 
 
-cdef inline void _centroid_beyond(const ShapeRef* S, const double* R, const double* xi, int b, int c,
-                                  const double* centre, double rdrum, const double* u, double tol,
-                                  double* q) noexcept nogil:
-    """Depth-weighted centroid of the candidate points (candidate_point) beyond the drum radius, each weighted
-    by its depth + tol (as fix wall/plane's point centroid); q is left unchanged when there is none."""
-    cdef double acc[3]
-    cdef double p[3]
-    cdef double wsum = 0.0, depth
-    cdef int k = 0
-    acc[0] = acc[1] = acc[2] = 0.0
-    while candidate_point(S, R, xi, u, k, p):
-        k += 1
-        depth = tol + sqrt((p[b] - centre[b]) ** 2 + (p[c] - centre[c]) ** 2) - rdrum
-        if depth > 0.0:
-            acc[0] += depth * p[0]
-            acc[1] += depth * p[1]
-            acc[2] += depth * p[2]
-            wsum += depth
-    if wsum > 0.0:
-        for k in range(3):
-            q[k] = acc[k] / wsum
-
-
-cdef inline void _pose(ShapeRef* S, int s, const int[::1] skind, const double[:, ::1] sparams,
-                       const i64[::1] svoff, const int[::1] snv, const double[:, ::1] verts,
-                       const double[:, ::1] quat, int i, double sc, double* R) noexcept nogil:
-    """Shape row s of particle i and its rotation scaled by sc (body -> world)."""
-    cdef int k
-    S.kind = skind[s]
-    S.params = &sparams[s, 0]
-    S.nverts = snv[s]
-    S.verts = &verts[svoff[s], 0]
-    quat_to_rot(&quat[i, 0], R)
-    for k in range(9):
-        R[k] *= sc
-
-
 def drum_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1] omega,
                double[:, ::1] f, double[:, ::1] torque, const double[::1] radius, const double[::1] rmass,
                const int[::1] type_, const int[::1] mask, int groupbit, int nlocal, int axis,
@@ -221,12 +184,21 @@ def drum_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, :
     cdef int s
     cdef bint posed
     cdef ShapeRef S
+    cdef Surface drum, end
+    drum.cylinder = True
+    drum.b = b
+    drum.c = c
+    drum.r = rdrum
+    end.cylinder = False
+    end.a = axis
     st[3] = 0.0
     for d in range(3):
         e[d] = 0.0
         cen[d] = centre[d]
         st[d] = 0.0
     e[axis] = 1.0
+    for d in range(3):
+        drum.centre[d] = centre[d]
     with nogil:
         for i in range(nlocal):
             if not (mask[i] & groupbit):
@@ -242,7 +214,8 @@ def drum_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, :
                     if use_history and advance:
                         forget(&xi[i, 0])
                 else:
-                    _pose(&S, s, skind, sparams, svoff, snv, verts, quat, i, radius[i] / srad[s], R)
+                    pose_shape(&S, skind[s], &sparams[s, 0], snv[s], &verts[svoff[s], 0], &quat[i, 0],
+                               radius[i] / srad[s], R)
                     posed = True
                     u[axis] = 0.0
                     u[b] = n[b] / rho if rho > 0.0 else 1.0
@@ -255,7 +228,7 @@ def drum_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, :
                     else:
                         delta = rho_q - rdrum
                         if centroid:                              # keep the overlap, move the point
-                            _centroid_beyond(&S, R, &x[i, 0], b, c, cen, rdrum, u, 1e-9 * radius[i], q)
+                            centroid_beyond(&S, R, &x[i, 0], u, &drum, 1e-9 * radius[i], q)
                             rho_q = sqrt((q[b] - cen[b]) ** 2 + (q[c] - cen[c]) ** 2)
                             u[b] = (q[b] - cen[b]) / rho_q
                             u[c] = (q[c] - cen[c]) / rho_q
@@ -272,7 +245,8 @@ def drum_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, :
                             forget(&xi[i, 3 * w])
                         continue
                     if not posed:
-                        _pose(&S, s, skind, sparams, svoff, snv, verts, quat, i, radius[i] / srad[s], R)
+                        pose_shape(&S, skind[s], &sparams[s, 0], snv[s], &verts[svoff[s], 0], &quat[i, 0],
+                                   radius[i] / srad[s], R)
                         posed = True
                     n[0] = 0.0
                     n[1] = 0.0
@@ -287,8 +261,9 @@ def drum_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, :
                             forget(&xi[i, 3 * w])
                         continue
                     if centroid:
-                        plane_centroid(&S, R, &x[i, 0], u, axis, n[axis], end_lo if w == 1 else end_hi,
-                                       1e-9 * radius[i], q)
+                        end.side = n[axis]
+                        end.pos = end_lo if w == 1 else end_hi
+                        centroid_beyond(&S, R, &x[i, 0], u, &end, 1e-9 * radius[i], q)
                     q[axis] = (end_lo if w == 1 else end_hi) - 0.5 * gap * u[axis]   # midway in the overlap
                     _contact_shaped(i, w, x, v, omega, f, torque, radius, rmass, type_, coeff, xi,
                                     use_history, dt, advance, -gap, n, q, e, cen, endw, st)
