@@ -468,3 +468,25 @@ def test_drum_end_walls_push_shaped_particles_from_their_deepest_point():
                                    ends="ends -0.02 0.02 fixed")
     assert fix.ncontacts == 1
     np.testing.assert_allclose(f, [0.0, KN * d, 0.0], rtol=0, atol=1e-9 * KN * d)
+
+
+def test_drum_cubes_input_runs(tmp_path):
+    """inputs/in.drum_cubes, shortened (100 cubes, 0.15 s of fill, 0.03 s of damping): every phase runs,
+    all cubes are inserted and stay in the drum, they rest on its wall (contacts) with overlaps far below
+    the edge."""
+    import os
+    script = os.path.join(os.path.dirname(__file__), os.pardir, "inputs", "in.drum_cubes")
+    cwd = os.getcwd()
+    os.chdir(tmp_path)
+    try:
+        sim = dem.Simulation(screen=False, variables=[("N", ["100"]), ("fill", ["0.15"]),
+                                                      ("settle", ["0.03"]), ("rotate", ["0.004"])])
+        sim.file(script)
+    finally:
+        os.chdir(cwd)
+    assert sim.atom.natoms == 100
+    x = sim.gather("x")
+    assert np.all(np.hypot(x[:, 0], x[:, 2]) < R)
+    drum = sim.modify.find("drum")
+    assert drum.ncontacts > 5 and drum.max_overlap < 0.01
+    assert (tmp_path / "drum_cubes_final.png").exists()
