@@ -22,6 +22,7 @@ an error seen by one rank only never hangs. Any other exception aborts through t
 """
 import sys
 import time
+import traceback
 
 import numpy as np
 from mpi4py import MPI
@@ -32,20 +33,23 @@ from .comm import Comm
 from .errors import DemError
 
 ERROR_WAIT = 5.0            # seconds to wait for the other ranks to stop with the same error
+ABORT_GRACE = 0.5           # seconds for the process manager to forward a rank's last words before Abort
 REVERSE_FIELDS = ("f", "torque")
 AXES = "xyz"
 
 
 def install_abort_hook(world):
     """An uncaught exception on one rank prints its traceback and aborts the whole job (never a hang)."""
-    previous = sys.excepthook
 
     def hook(kind, value, tb):
         try:
-            previous(kind, value, tb)
-            sys.stderr.write(f"ERROR on rank {world.Get_rank()}: uncaught {kind.__name__}: aborting the "
+            # one write, then a pause: Abort kills the job at once, and output the process manager has not
+            # forwarded yet would be lost (seen: a traceback cut after its first lines)
+            text = "".join(traceback.format_exception(kind, value, tb))
+            sys.stderr.write(f"{text}ERROR on rank {world.Get_rank()}: uncaught {kind.__name__}: aborting the "
                              f"MPI job\n")
             sys.stderr.flush()
+            time.sleep(ABORT_GRACE)
         finally:
             world.Abort(1)
 
@@ -576,6 +580,7 @@ class CommMPI(Comm):
                     print(f"{text} (rank {self.me})", file=sys.stderr, flush=True)
                 print(f"ERROR on rank {self.me}: the other ranks did not stop with this error: aborting the "
                       f"MPI job", file=sys.stderr, flush=True)
+                time.sleep(ABORT_GRACE)
                 self.world.Abort(1)
             time.sleep(0.002)
         return 1
