@@ -134,11 +134,11 @@ cdef inline void _farthest_from_axis(const ShapeRef* S, const double* R, const d
                 p[0] = q[0]
                 p[1] = q[1]
                 p[2] = q[2]
-        rho = sqrt(best)
-        if rho > 0.0:
+        if best > 0.0:
+            rho = sqrt(best)
             u[b] = (p[b] - centre[b]) / rho
             u[c] = (p[c] - centre[c]) / rho
-        return
+            return
     for it in range(40):              # the error shrinks by ~ size / R_drum per iteration
         support_world(S, R, xi, u, p)
         rb = p[b] - centre[b]
