@@ -1031,6 +1031,28 @@ cdef inline void _set_ref(ShapeRef* r, int kind, const double[::1] params, const
         raise ValueError("a polyhedron needs vertices")
 
 
+cdef void _set_pair(ShapeRef* A, int ka, const double[::1] params_a, const double[:, ::1] verts_a,
+                    const double[::1] qa, double* Ra, ShapeRef* B, int kb, const double[::1] params_b,
+                    const double[:, ::1] verts_b, const double[::1] qb, double* Rb, guess, double* g):
+    """Both posed shapes of a single-pair query, and the warm start (zero without a guess)."""
+    _set_ref(A, ka, params_a, verts_a)
+    _set_ref(B, kb, params_b, verts_b)
+    quat_to_rot(&qa[0], Ra)
+    quat_to_rot(&qb[0], Rb)
+    g[0] = g[1] = g[2] = 0.0
+    if guess is not None:
+        g[0], g[1], g[2] = guess[0], guess[1], guess[2]
+
+
+cdef inline void _row_ref(ShapeRef* r, int s, const int[::1] kind, const double[:, ::1] params,
+                          const cnp.int64_t[::1] voff, const int[::1] nv, const double[:, ::1] verts) noexcept nogil:
+    """Shape-table row s as a ShapeRef."""
+    r.kind = kind[s]
+    r.params = &params[s, 0]
+    r.nverts = nv[s]
+    r.verts = &verts[voff[s], 0]
+
+
 def pair_distance(int ka, const double[::1] params_a, const double[:, ::1] verts_a,
                   const double[::1] xa, const double[::1] qa,
                   int kb, const double[::1] params_b, const double[:, ::1] verts_b,
@@ -1043,13 +1065,7 @@ def pair_distance(int ka, const double[::1] params_a, const double[:, ::1] verts
     cdef double d = 0.0
     cdef int r
     cdef cnp.ndarray[double, ndim=1] pa = np.zeros(3), pb = np.zeros(3)
-    _set_ref(&A, ka, params_a, verts_a)
-    _set_ref(&B, kb, params_b, verts_b)
-    quat_to_rot(&qa[0], Ra)
-    quat_to_rot(&qb[0], Rb)
-    g[0] = g[1] = g[2] = 0.0
-    if guess is not None:
-        g[0], g[1], g[2] = guess[0], guess[1], guess[2]
+    _set_pair(&A, ka, params_a, verts_a, qa, Ra, &B, kb, params_b, verts_b, qb, Rb, guess, g)
     with nogil:
         r = signed_distance(&A, Ra, &xa[0], &B, Rb, &xb[0], tol, g, &d, <double*>pa.data, <double*>pb.data)
     return d, pa, pb, r
@@ -1067,13 +1083,7 @@ def pair_contact(int ka, const double[::1] params_a, const double[:, ::1] verts_
     cdef double ov = 0.0
     cdef int r
     cdef cnp.ndarray[double, ndim=1] n = np.zeros(3), p = np.zeros(3)
-    _set_ref(&A, ka, params_a, verts_a)
-    _set_ref(&B, kb, params_b, verts_b)
-    quat_to_rot(&qa[0], Ra)
-    quat_to_rot(&qb[0], Rb)
-    g[0] = g[1] = g[2] = 0.0
-    if guess is not None:
-        g[0], g[1], g[2] = guess[0], guess[1], guess[2]
+    _set_pair(&A, ka, params_a, verts_a, qa, Ra, &B, kb, params_b, verts_b, qb, Rb, guess, g)
     with nogil:
         r = crust_contact(&A, crust_a, Ra, &xa[0], &B, crust_b, Rb, &xb[0], tol, g, NULL, &ov,
                           <double*>n.data, <double*>p.data)
@@ -1103,14 +1113,8 @@ def contact_batch(const int[::1] core_kind, const double[:, ::1] core_params, co
             j = pj[k]
             si = shape[i]
             sj = shape[j]
-            A.kind = core_kind[si]
-            A.params = &core_params[si, 0]
-            A.nverts = core_nv[si]
-            A.verts = &verts[core_voff[si], 0]
-            B.kind = core_kind[sj]
-            B.params = &core_params[sj, 0]
-            B.nverts = core_nv[sj]
-            B.verts = &verts[core_voff[sj], 0]
+            _row_ref(&A, si, core_kind, core_params, core_voff, core_nv, verts)
+            _row_ref(&B, sj, core_kind, core_params, core_voff, core_nv, verts)
             quat_to_rot(&quat[i, 0], Ra)
             quat_to_rot(&quat[j, 0], Rb)
             if feat is not None:
@@ -1139,14 +1143,8 @@ def distance_batch(const int[::1] kind, const double[:, ::1] params, const cnp.i
             j = pj[k]
             si = shape[i]
             sj = shape[j]
-            A.kind = kind[si]
-            A.params = &params[si, 0]
-            A.nverts = nv[si]
-            A.verts = &verts[voff[si], 0]
-            B.kind = kind[sj]
-            B.params = &params[sj, 0]
-            B.nverts = nv[sj]
-            B.verts = &verts[voff[sj], 0]
+            _row_ref(&A, si, kind, params, voff, nv, verts)
+            _row_ref(&B, sj, kind, params, voff, nv, verts)
             quat_to_rot(&quat[i, 0], Ra)
             quat_to_rot(&quat[j, 0], Rb)
             signed_distance(&A, Ra, &x[i, 0], &B, Rb, &x[j, 0], tol, &guess[k, 0], &dist[k],

@@ -399,6 +399,16 @@ class CommMPI(Comm):
     def _rows(arr):
         return arr if arr.ndim == 2 else arr.reshape(-1, 1)
 
+    def _sendrecv(self, s, sbuf, key, n, dest, source, tag):
+        """Send sbuf to `dest` and receive n rows from `source` for swap s (sbuf itself when the swap stays on
+        this rank); returns (received buffer, seconds spent waiting, bytes sent)."""
+        if s.local:
+            return sbuf, 0.0, 0
+        rbuf = s.buffer(key, n, sbuf.shape[1])
+        t = time.perf_counter()
+        self.world.Sendrecv([sbuf, MPI.DOUBLE], dest, tag, [rbuf, MPI.DOUBLE], source, tag)
+        return rbuf, time.perf_counter() - t, sbuf.nbytes
+
     def forward(self, fields=FORWARD_FIELDS):
         """Refresh the ghosts' copies of `fields` (float fields) from their owners."""
         if not self.swaps:
@@ -414,14 +424,9 @@ class CommMPI(Comm):
                     _comm.pack_shift(data["x"], s.sendlist, sbuf, col, *s.shift)
                 else:
                     _comm.pack(self._rows(data[name]), s.sendlist, sbuf, col)
-            if s.local:
-                rbuf = sbuf
-            else:
-                rbuf = s.buffer(("fr", width), s.nrecv, width)
-                t = clock()
-                self.world.Sendrecv([sbuf, MPI.DOUBLE], s.sendproc, 3, [rbuf, MPI.DOUBLE], s.recvproc, 3)
-                wait += clock() - t
-                nbytes += sbuf.nbytes
+            rbuf, w, b = self._sendrecv(s, sbuf, ("fr", width), s.nrecv, s.sendproc, s.recvproc, 3)
+            wait += w
+            nbytes += b
             for name, col, k in cols:
                 _comm.unpack(rbuf, col, self._rows(data[name]), s.first, s.nrecv)
         st = self.stats
@@ -442,14 +447,9 @@ class CommMPI(Comm):
             gbuf = s.buffer(("rs", width), s.nrecv, width)
             for name, col, k in cols:
                 _comm.pack_range(self._rows(data[name]), s.first, s.nrecv, gbuf, col)
-            if s.local:
-                obuf = gbuf
-            else:
-                obuf = s.buffer(("rr", width), len(s.sendlist), width)
-                t = clock()
-                self.world.Sendrecv([gbuf, MPI.DOUBLE], s.recvproc, 4, [obuf, MPI.DOUBLE], s.sendproc, 4)
-                wait += clock() - t
-                nbytes += gbuf.nbytes
+            obuf, w, b = self._sendrecv(s, gbuf, ("rr", width), len(s.sendlist), s.recvproc, s.sendproc, 4)
+            wait += w
+            nbytes += b
             for name, col, k in cols:
                 _comm.add(obuf, col, self._rows(data[name]), s.sendlist)
         st = self.stats

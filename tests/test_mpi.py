@@ -78,6 +78,20 @@ def frame(path, step):
         return {k: np.asarray(g[k]) for k in g}
 
 
+SETTINGS = """                 # pair, fixes and output of the bed and of its continuation from a restart
+pair_style      sphere
+pair_coeff      * * kn 2000 en 0.5 mu 0.5 gamma_t 0 ks 571.4
+fix             integrate all nve/sphere
+fix             gravity all gravity 9.81 vector 0.3 0.2 -1
+fix             walls all wall/plane xplane 0 0.012 yplane 0 0.008 zplane 0 NULL
+timestep        2e-6
+neighbor        0.0001 bin
+thermo          1
+thermo_style    custom step atoms contacts f_walls[contacts] ke
+thermo_modify   format float %.17g
+dump            d all h5 200 {dump}
+"""
+
 BED = """
 units           si
 boundary        f f fm
@@ -87,35 +101,9 @@ create_box      1 box
 region          fill block 0 0.012 0 0.008 0 0.012
 create_atoms    1 lattice fill bcc 0.00116 radius uniform 0.00045 0.0005 density 2500
 {balance}
-pair_style      sphere
-pair_coeff      * * kn 2000 en 0.5 mu 0.5 gamma_t 0 ks 571.4
-fix             integrate all nve/sphere
-fix             gravity all gravity 9.81 vector 0.3 0.2 -1
-fix             walls all wall/plane xplane 0 0.012 yplane 0 0.008 zplane 0 NULL
-timestep        2e-6
-neighbor        0.0001 bin
-thermo          1
-thermo_style    custom step atoms contacts f_walls[contacts] ke
-thermo_modify   format float %.17g
-dump            d all h5 200 {dump}
-{run}
-"""
+""" + SETTINGS + "{run}\n"
 
-SETTINGS_AFTER_RESTART = """
-read_restart    bed.restart
-pair_style      sphere
-pair_coeff      * * kn 2000 en 0.5 mu 0.5 gamma_t 0 ks 571.4
-fix             integrate all nve/sphere
-fix             gravity all gravity 9.81 vector 0.3 0.2 -1
-fix             walls all wall/plane xplane 0 0.012 yplane 0 0.008 zplane 0 NULL
-timestep        2e-6
-neighbor        0.0001 bin
-thermo          1
-thermo_style    custom step atoms contacts f_walls[contacts] ke
-thermo_modify   format float %.17g
-dump            d all h5 200 {dump}
-run             100
-"""
+SETTINGS_AFTER_RESTART = "read_restart    bed.restart\n" + SETTINGS + "run             100\n"
 
 
 def bed(dump, run="run 200", processors="", balance=""):

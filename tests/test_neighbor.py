@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 import dem
+from flowing_bed import bed
 
 
 # ----- brute force ----------------------------------------------------------------------------------------
@@ -120,39 +121,7 @@ def test_list_after_motion(boundary, size, n, radius, skin):
 
 
 # ----- contact history across rebuilds ----------------------------------------------------------------------
-BED = """
-boundary {boundary}
-region box block 0 0.01 0 0.006 0 0.02
-create_box 2 box
-region fill block 0 0.01 0 0.006 0 0.004
-create_atoms 1 lattice fill sc 0.001 radius uniform 0.0003 0.00048 density 2500
-region upper block INF INF INF INF 0.002 INF
-set region upper type 2 density 2000
-pair_style sphere
-pair_coeff * * kn 2000 en 0.5 mu 0.5 gamma_t 0 ks 571.4
-pair_coeff 1 2 kn 3000 en 0.6 mu 0.4 gamma_t 10 ks 800
-fix integrate all nve/sphere
-fix gravity all gravity 60 vector 0.3 0 -1
-fix walls all wall/plane {walls} zplane 0 NULL kn 2000 en 0.5 mu 0.3 ks 571.4
-timestep 1.5e-6
-neighbor 0.0001 bin
-thermo 0
-"""
-
-
-def bed(periodic, extra=""):
-    """A frictional bed (240 polydisperse spheres, two types) flowing down a tilted gravity: sliding and
-    sticking contacts with tangential history, walls with history, periodic crossings along x."""
-    sim = dem.Simulation(screen=False)
-    if periodic:
-        sim.commands(BED.format(boundary="p f fm", walls="yplane 0 0.006") + extra)
-    else:
-        sim.commands(BED.format(boundary="f f fm", walls="xplane 0 0.01 yplane 0 0.006") + extra)
-    rng = np.random.default_rng(5)
-    sim.atom.local("v")[:] = 0.05 * rng.normal(size=(sim.atom.nlocal, 3))
-    return sim
-
-
+# (the flowing bed: tests/flowing_bed.py)
 def history_map(sim):
     i, j = sim.neighbor.pairs()
     tag = sim.atom.data["tag"]
@@ -162,7 +131,7 @@ def history_map(sim):
 
 
 def test_history_survives_rebuild_and_sort():
-    sim = bed(periodic=True)
+    sim = bed("periodic")
     sim.run(6000)
     before = history_map(sim)
     walls_before = sim.gather("fix_walls_xi")
@@ -214,8 +183,8 @@ def test_rebuild_every_step_is_bitwise_identical():
     on rebuild steps, and a different permutation sums forces in another order) and no periodic axis (a
     particle is wrapped into the box on rebuild steps, x - L + L != x in floating point): with either, the
     two runs agree only to round-off, which the flow then amplifies."""
-    a = bed(periodic=False, extra="atom_modify sort 0 0\n")
-    b = bed(periodic=False, extra="atom_modify sort 0 0\nneigh_modify every 1 check no\n")
+    a = bed("walled", extra="atom_modify sort 0 0\n")
+    b = bed("walled", extra="atom_modify sort 0 0\nneigh_modify every 1 check no\n")
     a.run(6000)
     b.run(6000)
     assert b.neighbor.nbuilds == 6001 and a.neighbor.nbuilds < 100

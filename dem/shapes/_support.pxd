@@ -178,3 +178,26 @@ cdef inline void pose_shape(ShapeRef* S, int kind, const double* params, int nve
     quat_to_rot(quat, R)
     for k in range(9):
         R[k] *= scale
+
+
+cdef inline double plane_touch(const ShapeRef* S, const double* R, const double* x, const Surface* w,
+                               bint centroid, double tol, double* n, double* q) noexcept nogil:
+    """A posed body against the plane w (w.cylinder false): the overlap (<= 0: apart), n the unit normal from
+    the wall into the body and q the contact point: the deepest point (support along -n), or the centroid
+    of the candidate points beyond the wall, moved midway into the overlap."""
+    cdef double dn[3]
+    cdef double delta
+    cdef int d
+    for d in range(3):
+        n[d] = 0.0
+    n[w.a] = w.side
+    for d in range(3):
+        dn[d] = -n[d]
+    support_world(S, R, x, dn, q)
+    delta = -w.side * (q[w.a] - w.pos)
+    if delta <= 0.0:
+        return delta
+    if centroid:
+        centroid_beyond(S, R, x, dn, w, tol, q)
+    q[w.a] = w.pos - 0.5 * delta * w.side
+    return delta

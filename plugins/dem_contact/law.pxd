@@ -60,3 +60,47 @@ cdef inline void forget(double* xi) noexcept nogil:
         xi[0] = 0.0
         xi[1] = 0.0
         xi[2] = 0.0
+
+
+cdef inline bint rolling_torque(const double* c, const double* wi, const double* wj, const double* fn,
+                                double reff, double* t) noexcept nogil:
+    """Rolling resistance (c[5] = mu_roll): t, the torque on body i, of magnitude mu_roll reff |F_n| against
+    the relative spin wi - wj (body j takes -t). False, t untouched, when there is none."""
+    cdef double wr[3]
+    cdef double wmag, mr
+    cdef int d
+    if c[5] <= 0.0:
+        return False
+    for d in range(3):
+        wr[d] = wi[d] - wj[d]
+    wmag = sqrt(wr[0] * wr[0] + wr[1] * wr[1] + wr[2] * wr[2])
+    if wmag == 0.0:
+        return False
+    mr = c[5] * reff * sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]) / wmag
+    for d in range(3):
+        t[d] = -mr * wr[d]
+    return True
+
+
+cdef inline double push_at(const double* c, double delta, const double* n, const double* l, const double* v,
+                           const double* w, const double* vwall, double m, double* xi, double dt, bint advance,
+                           double* f, double* t, double* F) noexcept nogil:
+    """A wall pushing a body at the lever l (centre of mass -> contact point): the law with the body's
+    velocity there relative to the wall's, v + w x l - vwall; adds the force F to f and l x F to t.
+    Returns the elastic energy."""
+    cdef double vr[3]
+    cdef double fn[3]
+    cdef double ft[3]
+    cdef double energy
+    cdef int d
+    vr[0] = v[0] + w[1] * l[2] - w[2] * l[1] - vwall[0]
+    vr[1] = v[1] + w[2] * l[0] - w[0] * l[2] - vwall[1]
+    vr[2] = v[2] + w[0] * l[1] - w[1] * l[0] - vwall[2]
+    energy = hooke(c, delta, n, vr, m, xi, dt, advance, fn, ft)
+    for d in range(3):
+        F[d] = fn[d] + ft[d]
+        f[d] += F[d]
+    t[0] += l[1] * F[2] - l[2] * F[1]
+    t[1] += l[2] * F[0] - l[0] * F[2]
+    t[2] += l[0] * F[1] - l[1] * F[0]
+    return energy

@@ -14,7 +14,7 @@ the direction of the last core separation pa - pb (3, unit; also the pre-test ax
 polytopes, the vertex pairs of the last simplex (3)."""
 cimport numpy as cnp
 from libc.math cimport sqrt, fabs
-from dem_contact.law cimport forget, hooke
+from dem_contact.law cimport forget, hooke, rolling_torque
 from dem.shapes._support cimport ShapeRef, quat_to_rot, support_world
 from dem._gjk cimport crust_contact, CONTACT_NONE, CONTACT_CRUST
 
@@ -90,8 +90,8 @@ def poses(const double[:, ::1] x, const double[:, ::1] quat, const double[::1] r
                 dr = 0.0
                 for k in range(9):
                     dr += (R[k] - rot[i, k]) * (R[k] - rot[i, k])
-                dx = ((x[i, 0] - xprev[i, 0]) * (x[i, 0] - xprev[i, 0]) + (x[i, 1] - xprev[i, 1]) * (x[i, 1] - xprev[i, 1])
-                      + (x[i, 2] - xprev[i, 2]) * (x[i, 2] - xprev[i, 2]))
+                dx = ((x[i, 0] - xprev[i, 0]) ** 2 + (x[i, 1] - xprev[i, 1]) ** 2
+                      + (x[i, 2] - xprev[i, 2]) ** 2)
                 move[i] = sqrt(dx) + (sqrt(dr) * srad[s] if s >= 0 and not is_sphere[s] else 0.0)
             for k in range(9):
                 rot[i, k] = R[k]
@@ -133,12 +133,12 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
     cdef double fn[3]
     cdef double ft[3]
     cdef double F[3]
-    cdef double wr[3]
+    cdef double tr[3]
     cdef double g[3]
     cdef double feat[3]
     cdef double u[3]
     cdef double sb[3]
-    cdef double r2, r, rsum, delta, meff, ca, cb, energy = 0.0, ov, maxov = 0.0, fnmag, wmag, mr, rmin, gn
+    cdef double r2, r, rsum, delta, meff, ca, cb, energy = 0.0, ov, maxov = 0.0, rmin, gn
     cdef int nsep = 0, nskip = 0
     cdef double gap
     cdef bint sph_i, sph_j, new_axis
@@ -271,17 +271,12 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
             torque[j, 0] -= lj[1] * F[2] - lj[2] * F[1]
             torque[j, 1] -= lj[2] * F[0] - lj[0] * F[2]
             torque[j, 2] -= lj[0] * F[1] - lj[1] * F[0]
-            if c[5] > 0.0 and sph_i and sph_j:
-                # rolling resistance between spheres (as pair sphere); none for shaped bodies (Part III)
+            # rolling resistance between spheres (as pair sphere); none for shaped bodies (Part III)
+            if sph_i and sph_j and rolling_torque(c, &omega[i, 0], &omega[j, 0], fn,
+                                                  radius[i] * radius[j] / rsum, tr):
                 for d in range(3):
-                    wr[d] = omega[i, d] - omega[j, d]
-                wmag = sqrt(wr[0] * wr[0] + wr[1] * wr[1] + wr[2] * wr[2])
-                if wmag > 0.0:
-                    fnmag = sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2])
-                    mr = c[5] * (radius[i] * radius[j] / rsum) * fnmag / wmag
-                    for d in range(3):
-                        torque[i, d] -= mr * wr[d]
-                        torque[j, d] += mr * wr[d]
+                    torque[i, d] += tr[d]
+                    torque[j, d] -= tr[d]
     stats[0] = ncont
     stats[1] = maxov
     stats[2] = energy

@@ -13,10 +13,14 @@ a face or an edge lying on the wall gets its middle instead of one arbitrary cor
 moves continuously as the body tilts (a single corner below the plane is the deepest point again)."""
 cimport numpy as cnp
 from libc.math cimport sqrt
-from dem_contact.law cimport forget, hooke
-from dem.shapes._support cimport ShapeRef, Surface, centroid_beyond, pose_shape, support_world
+from dem_contact.law cimport forget, hooke, push_at
+from dem.shapes._support cimport ShapeRef, Surface, plane_touch, pose_shape
 
 ctypedef cnp.int64_t i64
+
+
+cdef double ZERO[3]      # the velocity of a fixed wall
+ZERO[:] = [0.0, 0.0, 0.0]
 
 
 def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1] omega,
@@ -37,7 +41,6 @@ def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, 
     cdef double vr[3]
     cdef double fn[3]
     cdef double ft[3]
-    cdef double dn[3]
     cdef double p[3]
     cdef double l[3]
     cdef double F[3]
@@ -64,43 +67,23 @@ def plane_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, 
                         pose_shape(&S, skind[s], &sparams[s, 0], snv[s], &verts[svoff[s], 0], &quat[i, 0],
                                    radius[i] / srad[s], R)
                         posed = True
-                    n[0] = 0.0
-                    n[1] = 0.0
-                    n[2] = 0.0
-                    n[a] = side[w]
-                    dn[0] = -n[0]
-                    dn[1] = -n[1]
-                    dn[2] = -n[2]
-                    support_world(&S, R, &x[i, 0], dn, p)      # deepest point towards the wall
-                    gap = side[w] * (p[a] - position[w])
-                    if gap >= 0.0:
+                    wall.a = a
+                    wall.side = side[w]
+                    wall.pos = position[w]
+                    delta = plane_touch(&S, R, &x[i, 0], &wall, centroid, 1e-9 * radius[i], n, p)
+                    if delta <= 0.0:
                         if use_history and advance:
                             forget(&xi[i, 3 * w])
                         continue
-                    delta = -gap
                     ncont += 1
                     ov = delta / (2.0 * radius[i])
                     if ov > maxov:
                         maxov = ov
-                    if centroid:
-                        wall.a = a
-                        wall.side = side[w]
-                        wall.pos = position[w]
-                        centroid_beyond(&S, R, &x[i, 0], dn, &wall, 1e-9 * radius[i], p)
-                    p[a] = position[w] - 0.5 * delta * side[w]    # contact point midway in the overlap
                     for d in range(3):
                         l[d] = p[d] - x[i, d]
-                    vr[0] = v[i, 0] + omega[i, 1] * l[2] - omega[i, 2] * l[1]
-                    vr[1] = v[i, 1] + omega[i, 2] * l[0] - omega[i, 0] * l[2]
-                    vr[2] = v[i, 2] + omega[i, 0] * l[1] - omega[i, 1] * l[0]
                     h = &xi[i, 3 * w] if use_history else NULL
-                    energy += hooke(&coeff[w, type_[i], 0], delta, n, vr, rmass[i], h, dt, advance, fn, ft)
-                    for d in range(3):
-                        F[d] = fn[d] + ft[d]
-                        f[i, d] += F[d]
-                    torque[i, 0] += l[1] * F[2] - l[2] * F[1]
-                    torque[i, 1] += l[2] * F[0] - l[0] * F[2]
-                    torque[i, 2] += l[0] * F[1] - l[1] * F[0]
+                    energy += push_at(&coeff[w, type_[i], 0], delta, n, l, &v[i, 0], &omega[i, 0], ZERO, rmass[i],
+                                      h, dt, advance, &f[i, 0], &torque[i, 0], F)
                 continue
             for w in range(nw):
                 a = axis[w]

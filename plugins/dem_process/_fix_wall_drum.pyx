@@ -12,9 +12,9 @@ midway in the overlap, the lever runs from the centre of mass to it (Grains3D: o
 rolling resistance); `point centroid` moves it to the depth-weighted centroid of the vertices beyond."""
 cimport numpy as cnp
 from libc.math cimport sqrt
-from dem_contact.law cimport forget, hooke
+from dem_contact.law cimport forget, hooke, push_at, rolling_torque
 from dem.shapes._support cimport (ShapeRef, Surface, BOX, POLYHEDRON, candidate_point, centroid_beyond,
-                                  pose_shape, support_world)
+                                  plane_touch, pose_shape, support_world)
 
 ctypedef cnp.int64_t i64
 
@@ -34,10 +34,10 @@ cdef inline void _contact(int i, int w, const double[:, ::1] x, const double[:, 
     cdef double fn[3]
     cdef double ft[3]
     cdef double ftot[3]
-    cdef double wr[3]
+    cdef double ww[3]
+    cdef double tr[3]
     cdef double* h
     cdef const double* c = &coeff[w, type_[i], 0]
-    cdef double wmag, mr
     cdef int d
     for d in range(3):
         p[d] = x[i, d] - ci * n[d] - centre[d]          # contact point relative to the axis point
@@ -59,17 +59,13 @@ cdef inline void _contact(int i, int w, const double[:, ::1] x, const double[:, 
     # torque of the wall on the particles about the axis: e . (p x F)
     stats[2] += (e[0] * (p[1] * ftot[2] - p[2] * ftot[1]) + e[1] * (p[2] * ftot[0] - p[0] * ftot[2])
                  + e[2] * (p[0] * ftot[1] - p[1] * ftot[0]))
-    if c[5] > 0.0:
-        # rolling resistance (as pair sphere, R_eff = r_i): mu_roll r_i |F_n| against the rolling relative
-        # to the wall, which spins at wall_omega about e
+    # rolling resistance (as pair sphere, R_eff = r_i) against the spin relative to the wall
+    for d in range(3):
+        ww[d] = wall_omega * e[d]
+    if rolling_torque(c, &omega[i, 0], ww, fn, radius[i], tr):
         for d in range(3):
-            wr[d] = omega[i, d] - wall_omega * e[d]
-        wmag = sqrt(wr[0] * wr[0] + wr[1] * wr[1] + wr[2] * wr[2])
-        if wmag > 0.0:
-            mr = c[5] * radius[i] * sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]) / wmag
-            for d in range(3):
-                torque[i, d] -= mr * wr[d]
-            stats[2] -= mr * (wr[0] * e[0] + wr[1] * e[1] + wr[2] * e[2])
+            torque[i, d] += tr[d]
+        stats[2] += tr[0] * e[0] + tr[1] * e[1] + tr[2] * e[2]
     stats[0] += 1.0
     if delta / (2.0 * radius[i]) > stats[1]:
         stats[1] = delta / (2.0 * radius[i])
@@ -87,11 +83,7 @@ cdef inline void _contact_shaped(int i, int w, const double[:, ::1] x, const dou
     cdef double l[3]
     cdef double p[3]
     cdef double vw[3]
-    cdef double vr[3]
-    cdef double fn[3]
-    cdef double ft[3]
     cdef double F[3]
-    cdef double* h
     cdef int d
     for d in range(3):
         l[d] = q[d] - x[i, d]
@@ -99,17 +91,8 @@ cdef inline void _contact_shaped(int i, int w, const double[:, ::1] x, const dou
     vw[0] = wall_omega * (e[1] * p[2] - e[2] * p[1])
     vw[1] = wall_omega * (e[2] * p[0] - e[0] * p[2])
     vw[2] = wall_omega * (e[0] * p[1] - e[1] * p[0])
-    vr[0] = v[i, 0] + omega[i, 1] * l[2] - omega[i, 2] * l[1] - vw[0]
-    vr[1] = v[i, 1] + omega[i, 2] * l[0] - omega[i, 0] * l[2] - vw[1]
-    vr[2] = v[i, 2] + omega[i, 0] * l[1] - omega[i, 1] * l[0] - vw[2]
-    h = &xi[i, 3 * w] if use_history else NULL
-    stats[3] += hooke(&coeff[w, type_[i], 0], delta, n, vr, rmass[i], h, dt, advance, fn, ft)
-    for d in range(3):
-        F[d] = fn[d] + ft[d]
-        f[i, d] += F[d]
-    torque[i, 0] += l[1] * F[2] - l[2] * F[1]
-    torque[i, 1] += l[2] * F[0] - l[0] * F[2]
-    torque[i, 2] += l[0] * F[1] - l[1] * F[0]
+    stats[3] += push_at(&coeff[w, type_[i], 0], delta, n, l, &v[i, 0], &omega[i, 0], vw, rmass[i],
+                        &xi[i, 3 * w] if use_history else NULL, dt, advance, &f[i, 0], &torque[i, 0], F)
     stats[2] += (e[0] * (p[1] * F[2] - p[2] * F[1]) + e[1] * (p[2] * F[0] - p[0] * F[2])
                  + e[2] * (p[0] * F[1] - p[1] * F[0]))
     stats[0] += 1.0
@@ -248,25 +231,15 @@ def drum_walls(const double[:, ::1] x, const double[:, ::1] v, const double[:, :
                         pose_shape(&S, skind[s], &sparams[s, 0], snv[s], &verts[svoff[s], 0], &quat[i, 0],
                                    radius[i] / srad[s], R)
                         posed = True
-                    n[0] = 0.0
-                    n[1] = 0.0
-                    n[2] = 0.0
-                    n[axis] = 1.0 if w == 1 else -1.0
-                    for d in range(3):
-                        u[d] = -n[d]
-                    support_world(&S, R, &x[i, 0], u, q)         # deepest point towards the end wall
-                    gap = q[axis] - end_lo if w == 1 else end_hi - q[axis]
-                    if gap >= 0.0:
+                    end.side = 1.0 if w == 1 else -1.0
+                    end.pos = end_lo if w == 1 else end_hi
+                    delta = plane_touch(&S, R, &x[i, 0], &end, centroid, 1e-9 * radius[i], n, q)
+                    if delta <= 0.0:
                         if use_history and advance:
                             forget(&xi[i, 3 * w])
                         continue
-                    if centroid:
-                        end.side = n[axis]
-                        end.pos = end_lo if w == 1 else end_hi
-                        centroid_beyond(&S, R, &x[i, 0], u, &end, 1e-9 * radius[i], q)
-                    q[axis] = (end_lo if w == 1 else end_hi) - 0.5 * gap * u[axis]   # midway in the overlap
                     _contact_shaped(i, w, x, v, omega, f, torque, radius, rmass, type_, coeff, xi,
-                                    use_history, dt, advance, -gap, n, q, e, cen, endw, st)
+                                    use_history, dt, advance, delta, n, q, e, cen, endw, st)
                 continue
             # cylinder: the gap is R - rho, the normal points to the axis
             n[b] = x[i, b] - centre[b]

@@ -2,7 +2,7 @@
 """Sphere-sphere contacts: analytic geometry, then the shared Grains3D law (dem_contact/law.pxd)."""
 cimport numpy as cnp
 from libc.math cimport sqrt
-from dem_contact.law cimport forget, hooke
+from dem_contact.law cimport forget, hooke, rolling_torque
 
 ctypedef cnp.int64_t i64
 
@@ -22,8 +22,8 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
     cdef double fn[3]
     cdef double ft[3]
     cdef double nxft[3]
-    cdef double wr[3]
-    cdef double r2, r, rinv, rsum, delta, meff, ci, cj, energy = 0.0, ov, maxov = 0.0, fnmag, wmag, mr
+    cdef double tr[3]
+    cdef double r2, r, rinv, rsum, delta, meff, ci, cj, energy = 0.0, ov, maxov = 0.0
     cdef const double* c
     cdef double* h
     with nogil:
@@ -71,17 +71,11 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                 for d in range(3):
                     torque[i, d] -= ci * nxft[d]
                     torque[j, d] -= cj * nxft[d]
-                if c[5] > 0.0:
-                    # rolling resistance: a torque of magnitude mu_roll R_eff |F_n| against relative rolling
+                # rolling resistance: a torque mu_roll R_eff |F_n| against the relative rolling
+                if rolling_torque(c, &omega[i, 0], &omega[j, 0], fn, radius[i] * radius[j] / rsum, tr):
                     for d in range(3):
-                        wr[d] = omega[i, d] - omega[j, d]
-                    wmag = sqrt(wr[0] * wr[0] + wr[1] * wr[1] + wr[2] * wr[2])
-                    if wmag > 0.0:
-                        fnmag = sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2])
-                        mr = c[5] * (radius[i] * radius[j] / rsum) * fnmag / wmag
-                        for d in range(3):
-                            torque[i, d] -= mr * wr[d]
-                            torque[j, d] += mr * wr[d]
+                        torque[i, d] += tr[d]
+                        torque[j, d] -= tr[d]
     stats[0] = ncont
     stats[1] = maxov
     stats[2] = energy
