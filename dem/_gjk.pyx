@@ -25,6 +25,7 @@ use EPA on the cores, depth + crust_a + crust_b (exact for the rounded bodies, c
 import numpy as np
 cimport numpy as cnp
 from libc.math cimport sqrt, fabs, cos, sin, INFINITY
+from dem._math cimport cross3, det3, dot3, sub3
 from dem.shapes._support cimport ShapeRef, support_world, support_world_id, vertex_world, quat_to_rot, NPARAM
 
 cdef enum:
@@ -37,27 +38,6 @@ cdef double EPA_FLOOR = 1e-11     # EPA stops when the depth is bracketed to thi
 #                                   edges (curved bodies) carry plane errors of about eps * size / edge
 
 
-cdef inline double _dot(const double* a, const double* b) noexcept nogil:
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-cdef inline void _cross(const double* a, const double* b, double* c) noexcept nogil:
-    c[0] = a[1] * b[2] - a[2] * b[1]
-    c[1] = a[2] * b[0] - a[0] * b[2]
-    c[2] = a[0] * b[1] - a[1] * b[0]
-
-
-cdef inline void _sub(const double* a, const double* b, double* c) noexcept nogil:
-    c[0] = a[0] - b[0]
-    c[1] = a[1] - b[1]
-    c[2] = a[2] - b[2]
-
-
-cdef inline double _det3(const double* a, const double* b, const double* c) noexcept nogil:
-    return (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
-            + a[2] * (b[0] * c[1] - b[1] * c[0]))
-
-
 cdef inline void _minkowski(const ShapeRef* A, const double* Ra, const double* xa,
                             const ShapeRef* B, const double* Rb, const double* xb,
                             const double* d, double* a, double* b, double* w) noexcept nogil:
@@ -68,7 +48,7 @@ cdef inline void _minkowski(const ShapeRef* A, const double* Ra, const double* x
     nd[2] = -d[2]
     support_world(A, Ra, xa, d, a)
     support_world(B, Rb, xb, nd, b)
-    _sub(a, b, w)
+    sub3(a, b, w)
 
 
 cdef inline void _minkowski_id(const ShapeRef* A, const double* Ra, const double* xa,
@@ -81,7 +61,7 @@ cdef inline void _minkowski_id(const ShapeRef* A, const double* Ra, const double
     nd[2] = -d[2]
     fa[0] = support_world_id(A, Ra, xa, d, a)
     fb[0] = support_world_id(B, Rb, xb, nd, b)
-    _sub(a, b, w)
+    sub3(a, b, w)
 
 
 # ---------------------------------------------------------------- signed-volume sub-simplex solver
@@ -92,12 +72,12 @@ cdef double _s1d(double (*s)[3], int i0, int i1, double* lam) noexcept nogil:
     cdef double t[3]
     cdef double tt, mu
     cdef double v[3]
-    _sub(s[i1], s[i0], t)
-    tt = _dot(t, t)
+    sub3(s[i1], s[i0], t)
+    tt = dot3(t, t)
     lam[i0] = 1.0
     lam[i1] = 0.0
     if tt > 0.0:
-        mu = -_dot(s[i0], t) / tt
+        mu = -dot3(s[i0], t) / tt
         if mu >= 1.0:
             lam[i0] = 0.0
             lam[i1] = 1.0
@@ -107,7 +87,7 @@ cdef double _s1d(double (*s)[3], int i0, int i1, double* lam) noexcept nogil:
     v[0] = lam[i0] * s[i0][0] + lam[i1] * s[i1][0]
     v[1] = lam[i0] * s[i0][1] + lam[i1] * s[i1][1]
     v[2] = lam[i0] * s[i0][2] + lam[i1] * s[i1][2]
-    return _dot(v, v)
+    return dot3(v, v)
 
 
 cdef inline double _area2(const double* p, const double* q, const double* r, int J, int K) noexcept nogil:
@@ -129,14 +109,14 @@ cdef double _s2d(double (*s)[3], int i0, int i1, int i2, double* lam) noexcept n
     ids[0] = i0
     ids[1] = i1
     ids[2] = i2
-    _sub(s[i1], s[i0], e1)
-    _sub(s[i2], s[i0], e2)
-    _cross(e1, e2, n)
-    nn = _dot(n, n)
+    sub3(s[i1], s[i0], e1)
+    sub3(s[i2], s[i0], e2)
+    cross3(e1, e2, n)
+    nn = dot3(n, n)
     inside = False
     C[0] = C[1] = C[2] = 0.0
     if nn > 0.0:
-        k = _dot(s[i0], n) / nn
+        k = dot3(s[i0], n) / nn
         p0[0] = k * n[0]
         p0[1] = k * n[1]
         p0[2] = k * n[2]
@@ -159,7 +139,7 @@ cdef double _s2d(double (*s)[3], int i0, int i1, int i2, double* lam) noexcept n
             lam[i2] = C[2] / k
             for j in range(3):
                 p0[j] = lam[i0] * s[i0][j] + lam[i1] * s[i1][j] + lam[i2] * s[i2][j]
-            return _dot(p0, p0)
+            return dot3(p0, p0)
     # outside: the closest of the edges opposite the vertices whose sign test failed (all if degenerate)
     best = -1.0
     for j in range(3):
@@ -175,7 +155,7 @@ cdef double _s2d(double (*s)[3], int i0, int i1, int i2, double* lam) noexcept n
     if best < 0.0:      # cannot happen, keep the first vertex
         lam[i0] = 1.0
         lam[i1] = lam[i2] = 0.0
-        best = _dot(s[i0], s[i0])
+        best = dot3(s[i0], s[i0])
     return best
 
 
@@ -185,14 +165,14 @@ cdef double _s3d(double (*s)[3], double* lam, bint* inside) noexcept nogil:
     cdef double tl[4]
     cdef double det, best, dd, sc
     cdef int j, f0, f1, f2
-    C[0] = -_det3(s[1], s[2], s[3])
-    C[1] = _det3(s[0], s[2], s[3])
-    C[2] = -_det3(s[0], s[1], s[3])
-    C[3] = _det3(s[0], s[1], s[2])
+    C[0] = -det3(s[1], s[2], s[3])
+    C[1] = det3(s[0], s[2], s[3])
+    C[2] = -det3(s[0], s[1], s[3])
+    C[3] = det3(s[0], s[1], s[2])
     det = C[0] + C[1] + C[2] + C[3]
     sc = 0.0
     for j in range(4):
-        dd = _dot(s[j], s[j])
+        dd = dot3(s[j], s[j])
         if dd > sc:
             sc = dd
     # origin inside only if the tetrahedron is not flat to round-off (|det| ~ 6 volume vs eps size^3)
@@ -265,6 +245,17 @@ cdef inline bint _solve(Simplex* S, double* v, double* pa, double* pb) noexcept 
     return False
 
 
+cdef inline void _set_point(Simplex* S, int k, const double* w, const double* a, const double* b, int ia,
+                            int ib) noexcept nogil:
+    cdef int c
+    for c in range(3):
+        S.w[k][c] = w[c]
+        S.a[k][c] = a[c]
+        S.b[k][c] = b[c]
+    S.fa[k] = ia
+    S.fb[k] = ib
+
+
 cdef inline void _copy_simplex(Simplex* dst, const Simplex* src) noexcept nogil:
     """Copy the live points only (a whole-struct copy costs more than a GJK iteration's arithmetic)."""
     cdef int i, c
@@ -318,7 +309,7 @@ cdef int gjk_distance(const ShapeRef* A, const double* Ra, const double* xa,
     for c in range(3):
         v2[c] = v[c]
     if (_gjk_run(A, Ra, xa, B, Rb, xb, tol, sep, v2, &S2, False, pa2, pb2, &closed2) == GJK_SEPARATED
-            and _dot(v2, v2) < _dot(v, v)):
+            and dot3(v2, v2) < dot3(v, v)):
         _copy_simplex(S, &S2)
         for c in range(3):
             v[c] = v2[c]
@@ -354,35 +345,31 @@ cdef int _gjk_run(const ShapeRef* A, const double* Ra, const double* xa,
     if warm and S.n > 0:
         maxw2 = 0.0
         for i in range(S.n):
-            ww = _dot(S.w[i], S.w[i])
+            ww = dot3(S.w[i], S.w[i])
             if ww > maxw2:
                 maxw2 = ww
         if _solve(S, v, pa, pb):
             return GJK_INTERSECT
     else:
-        if _dot(v, v) == 0.0:
-            _sub(xa, xb, v)
-            if _dot(v, v) == 0.0:
+        if dot3(v, v) == 0.0:
+            sub3(xa, xb, v)
+            if dot3(v, v) == 0.0:
                 v[0] = 1.0
         d[0] = -v[0]
         d[1] = -v[1]
         d[2] = -v[2]
         _minkowski_id(A, Ra, xa, B, Rb, xb, d, a, b, w, &ia, &ib)
+        _set_point(S, 0, w, a, b, ia, ib)
         S.n = 1
         S.lam[0] = 1.0
-        S.fa[0] = ia
-        S.fb[0] = ib
         for c in range(3):
-            S.w[0][c] = w[c]
-            S.a[0][c] = a[c]
-            S.b[0][c] = b[c]
             v[c] = w[c]
-        maxw2 = _dot(w, w)
-    best_vv = _dot(v, v)
+        maxw2 = dot3(w, w)
+    best_vv = dot3(v, v)
     cur_best = True                 # S is the best simplex so far (best is only written before S changes)
     gap2 = (1.0 - tol) * (1.0 - tol)
     for it in range(GJK_MAXIT):
-        vv = _dot(v, v)
+        vv = dot3(v, v)
         if vv <= EPS_ZERO * maxw2:
             _witness(S, pa, pb)
             return GJK_INTERSECT
@@ -390,7 +377,7 @@ cdef int _gjk_run(const ShapeRef* A, const double* Ra, const double* xa,
         d[1] = -v[1]
         d[2] = -v[2]
         _minkowski_id(A, Ra, xa, B, Rb, xb, d, a, b, w, &ia, &ib)
-        vw = _dot(v, w)
+        vw = dot3(v, w)
         if vw > 0.0:
             rs = 1.0 / sqrt(vv)
             lbi = vw * rs
@@ -410,19 +397,14 @@ cdef int _gjk_run(const ShapeRef* A, const double* Ra, const double* xa,
             break
         if cur_best:
             _copy_simplex(&best, S)
-        for c in range(3):
-            S.w[S.n][c] = w[c]
-            S.a[S.n][c] = a[c]
-            S.b[S.n][c] = b[c]
-        S.fa[S.n] = ia
-        S.fb[S.n] = ib
+        _set_point(S, S.n, w, a, b, ia, ib)
         S.n += 1
-        ww = _dot(w, w)
+        ww = dot3(w, w)
         if ww > maxw2:
             maxw2 = ww
         if _solve(S, v, pa, pb):
             return GJK_INTERSECT
-        vv = _dot(v, v)
+        vv = dot3(v, v)
         if vv < best_vv:
             best_vv = vv
             cur_best = True
@@ -435,11 +417,11 @@ cdef int _gjk_run(const ShapeRef* A, const double* Ra, const double* xa,
     if not cur_best:
         _copy_simplex(S, &best)
     _witness(S, pa, pb)
-    _sub(pa, pb, v)
+    sub3(pa, pb, v)
     if lb > 0.0:
         # the distance is the best upper bound |v|; its direction the one of the best lower bound: on a stall
         # the last simplices agree on |v| but their normals wander, the dual direction does not
-        vv = sqrt(_dot(v, v))
+        vv = sqrt(dot3(v, v))
         for c in range(3):
             v[c] = vv * nlb[c]
     return GJK_SEPARATED
@@ -467,15 +449,15 @@ cdef void _face_plane(Polytope* P, int f) noexcept nogil:
     cdef double e2[3]
     cdef double nn
     cdef int* v = P.fv[f]
-    _sub(P.w[v[1]], P.w[v[0]], e1)
-    _sub(P.w[v[2]], P.w[v[0]], e2)
-    _cross(e1, e2, P.n[f])
-    nn = sqrt(_dot(P.n[f], P.n[f]))
+    sub3(P.w[v[1]], P.w[v[0]], e1)
+    sub3(P.w[v[2]], P.w[v[0]], e2)
+    cross3(e1, e2, P.n[f])
+    nn = sqrt(dot3(P.n[f], P.n[f]))
     if nn > 0.0:
         P.n[f][0] /= nn
         P.n[f][1] /= nn
         P.n[f][2] /= nn
-        P.dist[f] = (_dot(P.n[f], P.w[v[0]]) + _dot(P.n[f], P.w[v[1]]) + _dot(P.n[f], P.w[v[2]])) / 3.0
+        P.dist[f] = (dot3(P.n[f], P.w[v[0]]) + dot3(P.n[f], P.w[v[1]]) + dot3(P.n[f], P.w[v[2]])) / 3.0
     else:
         P.dist[f] = 1e300      # degenerate sliver: never the closest face
 
@@ -519,7 +501,7 @@ cdef void _silhouette(Polytope* P, int f, int e, const double* w, double eps) no
     cdef int k, g, ge
     if f < 0 or not P.alive[f]:
         return
-    if _dot(P.n[f], w) - P.dist[f] <= eps:   # f not visible: (f, e) is a horizon edge
+    if dot3(P.n[f], w) - P.dist[f] <= eps:   # f not visible: (f, e) is a horizon edge
         if P.nh < EPA_MAXF:
             P.hf[P.nh] = f
             P.he[P.nh] = e
@@ -547,7 +529,7 @@ cdef int _blow_up(const ShapeRef* A, const double* Ra, const double* xa,
     cdef double scale2 = 0.0, x, cs, sn, ang
     cdef int i, k, c, m
     for i in range(S.n):
-        x = _dot(S.w[i], S.w[i])
+        x = dot3(S.w[i], S.w[i])
         if x > scale2:
             scale2 = x
     if S.n == 1:
@@ -555,22 +537,19 @@ cdef int _blow_up(const ShapeRef* A, const double* Ra, const double* xa,
             d[0] = d[1] = d[2] = 0.0
             d[k % 3] = 1.0 if k < 3 else -1.0
             _minkowski(A, Ra, xa, B, Rb, xb, d, a, b, w)
-            _sub(w, S.w[0], e)
-            x = _dot(w, w)
+            sub3(w, S.w[0], e)
+            x = dot3(w, w)
             if x > scale2:
                 scale2 = x
-            if _dot(e, e) > 1e-20 * scale2:
+            if dot3(e, e) > 1e-20 * scale2:
                 break
         else:
             return -1
-        for c in range(3):
-            S.w[1][c] = w[c]
-            S.a[1][c] = a[c]
-            S.b[1][c] = b[c]
+        _set_point(S, 1, w, a, b, -1, -1)
         S.n = 2
     if S.n == 2:
-        _sub(S.w[1], S.w[0], e)
-        x = sqrt(_dot(e, e))
+        sub3(S.w[1], S.w[0], e)
+        x = sqrt(dot3(e, e))
         if x == 0.0:
             return -1
         e[0] /= x
@@ -583,12 +562,12 @@ cdef int _blow_up(const ShapeRef* A, const double* Ra, const double* xa,
             m = 2
         t[0] = t[1] = t[2] = 0.0
         t[m] = 1.0
-        _cross(e, t, u)
-        x = sqrt(_dot(u, u))
+        cross3(e, t, u)
+        x = sqrt(dot3(u, u))
         u[0] /= x
         u[1] /= x
         u[2] /= x
-        _cross(e, u, v2)
+        cross3(e, u, v2)
         for k in range(6):             # directions perpendicular to the segment, 60 degrees apart
             ang = k * 1.0471975511965976
             cs = cos(ang)
@@ -596,38 +575,32 @@ cdef int _blow_up(const ShapeRef* A, const double* Ra, const double* xa,
             for c in range(3):
                 d[c] = cs * u[c] + sn * v2[c]
             _minkowski(A, Ra, xa, B, Rb, xb, d, a, b, w)
-            _sub(w, S.w[0], t)
-            _cross(t, e, d)
-            if _dot(d, d) > 1e-20 * scale2:
+            sub3(w, S.w[0], t)
+            cross3(t, e, d)
+            if dot3(d, d) > 1e-20 * scale2:
                 break
         else:
             return -1
-        for c in range(3):
-            S.w[2][c] = w[c]
-            S.a[2][c] = a[c]
-            S.b[2][c] = b[c]
+        _set_point(S, 2, w, a, b, -1, -1)
         S.n = 3
     if S.n == 3:
-        _sub(S.w[1], S.w[0], e)
-        _sub(S.w[2], S.w[0], t)
-        _cross(e, t, d)
-        if _dot(d, d) == 0.0:
+        sub3(S.w[1], S.w[0], e)
+        sub3(S.w[2], S.w[0], t)
+        cross3(e, t, d)
+        if dot3(d, d) == 0.0:
             return -1
         for k in range(2):
             _minkowski(A, Ra, xa, B, Rb, xb, d, a, b, w)
-            _sub(w, S.w[0], t)
-            x = _dot(t, d)
-            if x * x > 1e-20 * scale2 * _dot(d, d):
+            sub3(w, S.w[0], t)
+            x = dot3(t, d)
+            if x * x > 1e-20 * scale2 * dot3(d, d):
                 break
             d[0] = -d[0]
             d[1] = -d[1]
             d[2] = -d[2]
         else:
             return -1
-        for c in range(3):
-            S.w[3][c] = w[c]
-            S.a[3][c] = a[c]
-            S.b[3][c] = b[c]
+        _set_point(S, 3, w, a, b, -1, -1)
         S.n = 4
     return 0
 
@@ -666,14 +639,14 @@ cdef int epa_penetration(const ShapeRef* A, const double* Ra, const double* xa,
             P.w[i][c] = S.w[i][c]
             P.a[i][c] = S.a[i][c]
             P.b[i][c] = S.b[i][c]
-        x = _dot(S.w[i], S.w[i])
+        x = dot3(S.w[i], S.w[i])
         if x > scale:
             scale = x
     scale = sqrt(scale)
-    _sub(P.w[1], P.w[0], e1)
-    _sub(P.w[2], P.w[0], e2)
-    _sub(P.w[3], P.w[0], d)
-    x = _det3(e1, e2, d)
+    sub3(P.w[1], P.w[0], e1)
+    sub3(P.w[2], P.w[0], e2)
+    sub3(P.w[3], P.w[0], d)
+    x = det3(e1, e2, d)
     if x == 0.0:
         return -1
     if x > 0.0:         # make (0, 1, 2) face away from vertex 3
@@ -708,7 +681,7 @@ cdef int epa_penetration(const ShapeRef* A, const double* Ra, const double* xa,
             best = lprev
             break
         _minkowski(A, Ra, xa, B, Rb, xb, P.n[f], a, b, w)
-        x = _dot(P.n[f], w)
+        x = dot3(P.n[f], w)
         if x < ub:                                  # h_M(n) >= depth for every n: keep the smallest
             ub = x
             for c in range(3):
@@ -769,15 +742,15 @@ cdef int epa_penetration(const ShapeRef* A, const double* Ra, const double* xa,
     depth[0] = best if best > 0.0 else 0.0
     for c in range(3):
         p[c] = best * P.n[f][c]
-    _sub(P.w[P.fv[f][1]], P.w[P.fv[f][0]], e1)
-    _sub(P.w[P.fv[f][2]], P.w[P.fv[f][0]], e2)
-    _cross(e1, e2, N)
-    NN = _dot(N, N)
+    sub3(P.w[P.fv[f][1]], P.w[P.fv[f][0]], e1)
+    sub3(P.w[P.fv[f][2]], P.w[P.fv[f][0]], e2)
+    cross3(e1, e2, N)
+    NN = dot3(N, N)
     for k in range(3):
-        _sub(P.w[P.fv[f][(k + 1) % 3]], p, e1)
-        _sub(P.w[P.fv[f][(k + 2) % 3]], p, e2)
-        _cross(e1, e2, d)
-        l[k] = _dot(d, N) / NN
+        sub3(P.w[P.fv[f][(k + 1) % 3]], p, e1)
+        sub3(P.w[P.fv[f][(k + 2) % 3]], p, e2)
+        cross3(e1, e2, d)
+        l[k] = dot3(d, N) / NN
     for c in range(3):
         pa[c] = 0.0
         pb[c] = 0.0
@@ -800,13 +773,13 @@ cdef int signed_distance(const ShapeRef* A, const double* Ra, const double* xa,
     cdef double n[3]
     cdef int r = gjk_distance(A, Ra, xa, B, Rb, xb, tol, INFINITY, guess, &S, False, pa, pb)
     if r == GJK_SEPARATED:
-        dist[0] = sqrt(_dot(guess, guess))
+        dist[0] = sqrt(dot3(guess, guess))
         return r
     if epa_penetration(A, Ra, xa, B, Rb, xb, &S, tol, &depth, n, pa, pb) < 0:
         dist[0] = 0.0
         return -1
     dist[0] = -depth
-    _sub(pa, pb, guess)
+    sub3(pa, pb, guess)
     return GJK_INTERSECT
 
 
@@ -818,16 +791,16 @@ cdef inline bint _inside(const double* p0, const double* p1, const double* p2, d
     cdef double e2[3]
     cdef double d00, d01, d11, d20, d21, den, s, t
     cdef int c
-    _sub(p1, p0, e1)
-    _sub(p2, p0, e2)
-    d00 = _dot(e1, e1)
-    d01 = _dot(e1, e2)
-    d11 = _dot(e2, e2)
+    sub3(p1, p0, e1)
+    sub3(p2, p0, e2)
+    d00 = dot3(e1, e1)
+    d01 = dot3(e1, e2)
+    d11 = dot3(e2, e2)
     den = d00 * d11 - d01 * d01            # |e1 x e2|^2
     if not den > 1e-6 * d00 * d11:        # thin: left to the signed-volume solver
         return False
-    d20 = -_dot(p0, e1)
-    d21 = -_dot(p0, e2)
+    d20 = -dot3(p0, e1)
+    d21 = -dot3(p0, e2)
     s = (d11 * d20 - d01 * d21) / den
     t = (d00 * d21 - d01 * d20) / den
     if not (s > 0.0 and t > 0.0 and s + t < 1.0):
@@ -838,17 +811,6 @@ cdef inline bint _inside(const double* p0, const double* p1, const double* p2, d
     for c in range(3):
         v[c] = p0[c] + s * e1[c] + t * e2[c]
     return True
-
-
-cdef inline void _set_point(Simplex* S, int k, const double* w, const double* a, const double* b, int ia,
-                            int ib) noexcept nogil:
-    cdef int c
-    for c in range(3):
-        S.w[k][c] = w[c]
-        S.a[k][c] = a[c]
-        S.b[k][c] = b[c]
-    S.fa[k] = ia
-    S.fb[k] = ib
 
 
 cdef int _warm_triangle(const ShapeRef* A, const double* Ra, const double* xa,
@@ -875,37 +837,37 @@ cdef int _warm_triangle(const ShapeRef* A, const double* Ra, const double* xa,
         return -1
     maxw2 = 0.0
     for k in range(3):
-        vv = _dot(S.w[k], S.w[k])
+        vv = dot3(S.w[k], S.w[k])
         if vv > maxw2:
             maxw2 = vv
     for it in range(4):
-        vv = _dot(v, v)
+        vv = dot3(v, v)
         if vv <= EPS_ZERO * maxw2:
             return -1
         for c in range(3):
             d[c] = -v[c]
         _minkowski_id(A, Ra, xa, B, Rb, xb, d, a, b, w, &ia, &ib)
-        vw = _dot(v, w)
+        vw = dot3(v, w)
         if vv - vw <= tol * vv or (vw > 0.0 and vw * vw >= sep * sep * vv):   # converged, or >= sep apart
             _witness(S, pa, pb)
-            _sub(pa, pb, v)
+            sub3(pa, pb, v)
             return GJK_SEPARATED
-        vw = _dot(w, w)
+        vw = dot3(w, w)
         if vw > maxw2:
             maxw2 = vw
         for e in range(3):             # faces (w, S_i, S_j) of the tetrahedron, S_k opposite
             i = e
             j = (e + 1) % 3
             k = (e + 2) % 3
-            _sub(S.w[i], w, e1)
-            _sub(S.w[j], w, e2)
-            _cross(e1, e2, n)
-            _sub(S.w[k], w, e1)
-            if _dot(n, e1) > 0.0:       # outward normal: away from S_k
+            sub3(S.w[i], w, e1)
+            sub3(S.w[j], w, e2)
+            cross3(e1, e2, n)
+            sub3(S.w[k], w, e1)
+            if dot3(n, e1) > 0.0:       # outward normal: away from S_k
                 n[0] = -n[0]
                 n[1] = -n[1]
                 n[2] = -n[2]
-            if -_dot(n, w) <= 0.0:      # the origin does not see this face
+            if -dot3(n, w) <= 0.0:      # the origin does not see this face
                 continue
             if _inside(S.w[i], S.w[j], w, lam, vn):
                 break
@@ -913,7 +875,7 @@ cdef int _warm_triangle(const ShapeRef* A, const double* Ra, const double* xa,
             _set_point(S, 3, w, a, b, ia, ib)
             S.n = 4
             return -1
-        if _dot(vn, vn) >= vv:          # no progress (round-off): the general loop decides
+        if dot3(vn, vn) >= vv:          # no progress (round-off): the general loop decides
             _set_point(S, 3, w, a, b, ia, ib)
             S.n = 4
             return -1
@@ -945,7 +907,7 @@ cdef bint _load_features(const ShapeRef* A, const double* Ra, const double* xa,
         if not vertex_world(A, Ra, xa, ia, S.a[k]) or not vertex_world(B, Rb, xb, ib, S.b[k]):
             S.n = 0
             return False
-        _sub(S.a[k], S.b[k], S.w[k])
+        sub3(S.a[k], S.b[k], S.w[k])
         S.fa[k] = ia
         S.fb[k] = ib
         S.n = k + 1
@@ -986,7 +948,7 @@ cdef int crust_contact(const ShapeRef* Acore, double crust_a, const double* Ra, 
     if feat != NULL:
         _store_features(&S, r == GJK_SEPARATED, feat)
     if r == GJK_SEPARATED:
-        d = sqrt(_dot(guess, guess))
+        d = sqrt(dot3(guess, guess))
         if d >= csum:
             return CONTACT_NONE
         if d > 0.0:
@@ -1001,8 +963,8 @@ cdef int crust_contact(const ShapeRef* Acore, double crust_a, const double* Ra, 
         if epa_penetration(Acore, Ra, xa, Bcore, Rb, xb, &S, tol, &depth, normal, pa, pb) < 0:
             code = CONTACT_FALLBACK      # degenerate cores: push along the centres
             depth = 0.0
-            _sub(xa, xb, normal)
-            d = sqrt(_dot(normal, normal))
+            sub3(xa, xb, normal)
+            d = sqrt(dot3(normal, normal))
             if d == 0.0:
                 normal[0] = 1.0
                 normal[1] = normal[2] = 0.0
@@ -1011,7 +973,7 @@ cdef int crust_contact(const ShapeRef* Acore, double crust_a, const double* Ra, 
                     normal[c] /= d
             for c in range(3):
                 pa[c] = pb[c] = 0.5 * (xa[c] + xb[c])
-        _sub(pa, pb, guess)
+        sub3(pa, pb, guess)
     overlap[0] = csum + depth
     h = 0.5 * (crust_b - crust_a)
     for c in range(3):

@@ -14,6 +14,18 @@ cdef inline void cross3(const double* a, const double* b, double* out) noexcept 
     out[2] = a[0] * b[1] - a[1] * b[0]
 
 
+cdef inline void sub3(const double* a, const double* b, double* out) noexcept nogil:
+    out[0] = a[0] - b[0]
+    out[1] = a[1] - b[1]
+    out[2] = a[2] - b[2]
+
+
+cdef inline double det3(const double* a, const double* b, const double* c) noexcept nogil:
+    """a . (b x c)"""
+    return (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+            + a[2] * (b[0] * c[1] - b[1] * c[0]))
+
+
 cdef inline void quat_rotate(const double* q, const double* v, double* out) noexcept nogil:
     """out = R(q) v (body -> space)."""
     cdef double w = q[0], x = q[1], y = q[2], z = q[3]
