@@ -426,6 +426,43 @@ thermo 0
         assert np.array_equal(a.gather(name), b.gather(name)), name
 
 
+def test_pair_move_bound_covers_every_point():
+    """The margins rest on move[i] (pair convex/gjk's poses): no point of the scaled body moves farther
+    between two calls. Random orientations turned by 1e-12 to 1 rad and shifted: the farthest moving vertex
+    of a box (its corners are the farthest points from the centre) stays within the bound, and the rotation
+    part is tight (the corner on the rotation's equator moves by nearly all of it)."""
+    from dem_convex import _pair_convex
+    rng = np.random.default_rng(5)
+    n = 2000
+    half = np.array([0.3, 0.2, 0.1])                   # box half-sizes; bounding radius |half|
+    srad = np.array([np.linalg.norm(half)])
+    q0 = rng.normal(size=(n, 4))
+    q0 /= np.linalg.norm(q0, axis=1)[:, None]
+    angle = 10.0 ** rng.uniform(-12, 0, n)
+    axis = rng.normal(size=(n, 3))
+    axis /= np.linalg.norm(axis, axis=1)[:, None]
+    w, v = np.cos(angle / 2), np.sin(angle / 2)[:, None] * axis
+    q1 = np.column_stack([w * q0[:, 0] - (v * q0[:, 1:]).sum(1),
+                          w[:, None] * q0[:, 1:] + q0[:, :1] * v + np.cross(v, q0[:, 1:])])
+    x0 = rng.normal(size=(n, 3))
+    x1 = x0 + rng.normal(size=(n, 3)) * 10.0 ** rng.uniform(-12, -2, (n, 1))
+    radius = srad[0] * rng.uniform(0.5, 2.0, n)        # scaled bodies
+    shape = np.zeros(n, dtype=np.int32)
+    is_sphere = np.zeros(1, dtype=np.int32)
+    rot, xprev, move = np.zeros((n, 9)), np.zeros((n, 3)), np.zeros(n)
+    _pair_convex.poses(x0, q0, radius, shape, is_sphere, srad, n, rot, xprev, move, True)
+    r0 = rot.copy()
+    _pair_convex.poses(x1, q1, radius, shape, is_sphere, srad, n, rot, xprev, move, False)
+    corners = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * half
+    p0 = np.einsum("nij,kj->nki", r0.reshape(n, 3, 3), corners) + x0[:, None, :]
+    p1 = np.einsum("nij,kj->nki", rot.reshape(n, 3, 3), corners) + x1[:, None, :]
+    moved = np.linalg.norm(p1 - p0, axis=2).max(axis=1)
+    assert np.all(moved <= move)
+    turn = 2.0 * np.sin(angle / 2) * radius            # the farthest a point at the bounding radius turns
+    shift = np.linalg.norm(x1 - x0, axis=1)
+    assert np.allclose(move - shift, turn, rtol=1e-6, atol=1e-13 * radius.max())
+
+
 def _mpiexec():
     for folder in (os.path.dirname(sys.executable), None):
         found = shutil.which("mpiexec", path=folder) if folder else shutil.which("mpiexec")

@@ -21,6 +21,8 @@ from dem._gjk cimport crust_contact, CONTACT_NONE, CONTACT_CRUST
 ctypedef cnp.int64_t i64
 
 cdef double MARGIN_SAFETY = 1e-12     # margins are kept this much (relative) short of the round-off
+cdef double SQRT_HALF = 0.7071067811865476   # ||R' - R||_2 = ||R' - R||_F / sqrt(2) between two rotations
+cdef double ROT_ROUNDOFF = 4e-15      # bound of what round-off (R not exactly orthonormal) adds to that
 cdef double POINT_PARAMS[8]
 POINT_PARAMS[:] = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
 
@@ -68,10 +70,12 @@ def poses(const double[:, ::1] x, const double[:, ::1] quat, const double[::1] r
           double[::1] move, bint reset):
     """rot[i] = scale_i R(quat_i), row-major, for the shaped particles (identity for spheres): computed
     once per step, used by every pair of the particle. move[i] bounds how far any point of
-    particle i's core moved since the last call (zero on reset): |x - xprev| + ||R - R_prev||_F r_shape (a
-    rotation moves a point p by |(R - R_prev) p| <= ||R - R_prev||_F |p|)."""
+    particle i's core moved since the last call (zero on reset): |x - xprev| + ||R - R_prev||_2 r_shape (a
+    rotation moves a point p by |(R - R_prev) p| <= ||R - R_prev||_2 |p|). R_prev^T R is a rotation by some
+    angle t, so the singular values of R - R_prev are 2 sin(t/2) (twice) and 0: its spectral norm is its
+    Frobenius norm over sqrt(2)."""
     cdef int i, k, s
-    cdef double sc, dr, dx
+    cdef double sc = 1.0, dr, dx
     cdef double R[9]
     with nogil:
         for i in range(nall):
@@ -92,7 +96,8 @@ def poses(const double[:, ::1] x, const double[:, ::1] quat, const double[::1] r
                     dr += (R[k] - rot[i, k]) * (R[k] - rot[i, k])
                 dx = ((x[i, 0] - xprev[i, 0]) ** 2 + (x[i, 1] - xprev[i, 1]) ** 2
                       + (x[i, 2] - xprev[i, 2]) ** 2)
-                move[i] = sqrt(dx) + (sqrt(dr) * srad[s] if s >= 0 and not is_sphere[s] else 0.0)
+                move[i] = sqrt(dx) + ((sqrt(dr) * SQRT_HALF + ROT_ROUNDOFF * sc) * srad[s]
+                                      if s >= 0 and not is_sphere[s] else 0.0)
             for k in range(9):
                 rot[i, k] = R[k]
             for k in range(3):
