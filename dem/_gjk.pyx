@@ -889,6 +889,7 @@ cdef int _warm_triangle(const ShapeRef* A, const double* Ra, const double* xa,
 
 
 cdef double FEAT_BASE = 2097152.0      # feat = ia * FEAT_BASE + ib + 1 (exact in a double), 0: none
+cdef double FEAT_INV = 1.0 / 2097152.0
 
 
 cdef bint _load_features(const ShapeRef* A, const double* Ra, const double* xa,
@@ -902,7 +903,7 @@ cdef bint _load_features(const ShapeRef* A, const double* Ra, const double* xa,
         if feat[k] <= 0.0:
             break
         code = feat[k] - 1.0
-        ia = <int>(code * (1.0 / FEAT_BASE))
+        ia = <int>(code * FEAT_INV)
         ib = <int>(code - ia * FEAT_BASE)
         if not vertex_world(A, Ra, xa, ia, S.a[k]) or not vertex_world(B, Rb, xb, ib, S.b[k]):
             S.n = 0

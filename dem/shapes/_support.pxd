@@ -54,10 +54,12 @@ cdef inline int support_world_id(const ShapeRef* sh, const double* R, const doub
     if sh.params[MARGIN] != 0.0 or (sh.kind != BOX and sh.kind != POLYHEDRON):
         support(sh.kind, sh.params, sh.verts, sh.nverts, db, p)
     elif sh.kind == BOX:
-        p[0] = copysign(sh.params[0], db[0])
-        p[1] = copysign(sh.params[1], db[1])
-        p[2] = copysign(sh.params[2], db[2])
+        # copysign(h, db) from the corner bits: gcc spills copysign's operand through memory (a stalled
+        # store-to-load forward in GJK's hottest loop)
         best_k = (0 if signbit(db[0]) else 1) | (0 if signbit(db[1]) else 2) | (0 if signbit(db[2]) else 4)
+        p[0] = sh.params[0] * <double>((best_k & 1) * 2 - 1)
+        p[1] = sh.params[1] * <double>((best_k & 2) - 1)
+        p[2] = sh.params[2] * <double>(((best_k & 4) >> 1) - 1)
     else:
         best_k = 0
         best = db[0] * sh.verts[0] + db[1] * sh.verts[1] + db[2] * sh.verts[2]
