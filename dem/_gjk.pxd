@@ -13,6 +13,7 @@ cdef enum:
     CONTACT_CRUST = 1      # cores apart by less than crust_a + crust_b: overlap from the GJK distance
     CONTACT_EPA = 2        # cores overlap: EPA on the cores + both crusts
     CONTACT_FALLBACK = 3   # EPA failed (degenerate); overlap = crusts, normal along the centres
+    NFEAT = 18             # warm-start values per pair (crust_contact's feat)
 
 cdef struct Simplex:
     int n

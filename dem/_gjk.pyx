@@ -26,7 +26,8 @@ import numpy as np
 cimport numpy as cnp
 from libc.math cimport sqrt, fabs, cos, sin, INFINITY
 from dem._math cimport cross3, det3, dot3, sub3
-from dem.shapes._support cimport ShapeRef, support_world, support_world_id, vertex_world, quat_to_rot, NPARAM
+from dem.shapes._support cimport (ShapeRef, support_world, support_world_id, vertex_world, posed_point,
+                                  quat_to_rot, NPARAM, BOX, POLYHEDRON, MARGIN)
 
 cdef enum:
     GJK_MAXIT = 128
@@ -888,43 +889,83 @@ cdef int _warm_triangle(const ShapeRef* A, const double* Ra, const double* xa,
     return -1
 
 
-cdef double FEAT_BASE = 2097152.0      # feat = ia * FEAT_BASE + ib + 1 (exact in a double), 0: none
+# Warm start of a lasting contact: the last separated simplex, kept in NFEAT values per pair. Between two
+# polytopes, its vertex pairs: feat[k] = ia * FEAT_BASE + ib + 1 (exact in a double; 0: none). Otherwise (a
+# curved or rounded body), its points in the two body frames: feat[6k:6k+3] on A, feat[6k+3:6k+6] on B
+# (unscaled shape coordinates; both zero: none). Re-posed, these are points of the bodies (body-fixed) near
+# the new closest points: a lasting contact starts from a simplex that already surrounds them. (Support
+# directions would not do: on a flat cap or along a cylinder's side the support jumps with the direction.)
+WARM_START_VALUES = NFEAT               # (for Python callers of contact_batch)
+cdef double FEAT_BASE = 2097152.0
 cdef double FEAT_INV = 1.0 / 2097152.0
+
+
+cdef inline bint _polytope(const ShapeRef* s) noexcept nogil:
+    return (s.kind == BOX or s.kind == POLYHEDRON) and s.params[MARGIN] == 0.0
+
+
+cdef inline void _body_point(const double* R, const double* x, const double* p, double* q) noexcept nogil:
+    """q = R^-1 (p - x) for R = scale x rotation: R^T (p - x) / scale^2."""
+    cdef double r[3]
+    cdef double s = 1.0 / (R[0] * R[0] + R[3] * R[3] + R[6] * R[6])
+    sub3(p, x, r)
+    q[0] = (R[0] * r[0] + R[3] * r[1] + R[6] * r[2]) * s
+    q[1] = (R[1] * r[0] + R[4] * r[1] + R[7] * r[2]) * s
+    q[2] = (R[2] * r[0] + R[5] * r[1] + R[8] * r[2]) * s
 
 
 cdef bint _load_features(const ShapeRef* A, const double* Ra, const double* xa,
                          const ShapeRef* B, const double* Rb, const double* xb,
-                         const double* feat, Simplex* S) noexcept nogil:
-    """The simplex of the stored vertex pairs at the current poses; False if there is none."""
-    cdef int k, c, ia, ib
+                         const double* feat, bint polytopes, Simplex* S) noexcept nogil:
+    """The stored simplex at the current poses; False if there is none."""
+    cdef int k, ia, ib
     cdef double code
+    cdef const double* q
     S.n = 0
     for k in range(3):
-        if feat[k] <= 0.0:
-            break
-        code = feat[k] - 1.0
-        ia = <int>(code * FEAT_INV)
-        ib = <int>(code - ia * FEAT_BASE)
-        if not vertex_world(A, Ra, xa, ia, S.a[k]) or not vertex_world(B, Rb, xb, ib, S.b[k]):
-            S.n = 0
-            return False
+        if polytopes:
+            if feat[k] <= 0.0:
+                break
+            code = feat[k] - 1.0
+            ia = <int>(code * FEAT_INV)
+            ib = <int>(code - ia * FEAT_BASE)
+            if not vertex_world(A, Ra, xa, ia, S.a[k]) or not vertex_world(B, Rb, xb, ib, S.b[k]):
+                S.n = 0
+                return False
+            S.fa[k] = ia
+            S.fb[k] = ib
+        else:
+            q = &feat[6 * k]
+            if q[0] == 0.0 and q[1] == 0.0 and q[2] == 0.0 and q[3] == 0.0 and q[4] == 0.0 and q[5] == 0.0:
+                break
+            posed_point(Ra, xa, q, S.a[k])
+            posed_point(Rb, xb, &q[3], S.b[k])
+            S.fa[k] = S.fb[k] = -1
         sub3(S.a[k], S.b[k], S.w[k])
-        S.fa[k] = ia
-        S.fb[k] = ib
         S.n = k + 1
     return S.n > 0
 
 
-cdef void _store_features(const Simplex* S, bint separated, double* feat) noexcept nogil:
+cdef void _store_features(const Simplex* S, bint separated, bint polytopes, const double* Ra, const double* xa,
+                          const double* Rb, const double* xb, double* feat) noexcept nogil:
     cdef int k
-    feat[0] = feat[1] = feat[2] = 0.0
+    if polytopes:
+        feat[0] = feat[1] = feat[2] = 0.0
+        if not separated or S.n > 3:
+            return
+        for k in range(S.n):
+            if S.fa[k] < 0 or S.fb[k] < 0:
+                feat[0] = feat[1] = feat[2] = 0.0
+                return
+            feat[k] = S.fa[k] * FEAT_BASE + S.fb[k] + 1.0
+        return
+    for k in range(NFEAT):
+        feat[k] = 0.0
     if not separated or S.n > 3:
         return
     for k in range(S.n):
-        if S.fa[k] < 0 or S.fb[k] < 0:
-            feat[0] = feat[1] = feat[2] = 0.0
-            return
-        feat[k] = S.fa[k] * FEAT_BASE + S.fb[k] + 1.0
+        _body_point(Ra, xa, S.a[k], &feat[6 * k])
+        _body_point(Rb, xb, S.b[k], &feat[6 * k + 3])
 
 
 cdef int crust_contact(const ShapeRef* Acore, double crust_a, const double* Ra, const double* xa,
@@ -934,20 +975,21 @@ cdef int crust_contact(const ShapeRef* Acore, double crust_a, const double* Ra, 
     """Grains3D contact of the rounded bodies core (+) ball(crust). Returns CONTACT_NONE (outputs untouched
     except guess and feat), CONTACT_CRUST, CONTACT_EPA or CONTACT_FALLBACK. overlap > 0, normal unit from B to
     A, point midway between the two swollen surfaces along the normal. Warm start (in/out): guess, the last
-    core separation; feat (3 values, or NULL), the vertex pairs of the last GJK simplex of two polytopes."""
+    core separation; feat (NFEAT values, or NULL), the last separated GJK simplex (see _load_features)."""
     cdef Simplex S
     cdef double pa[3]
     cdef double pb[3]
     cdef double d, depth, h, csum = crust_a + crust_b
     cdef int c, code
-    cdef bint warm = feat != NULL and _load_features(Acore, Ra, xa, Bcore, Rb, xb, feat, &S)
+    cdef bint polytopes = _polytope(Acore) and _polytope(Bcore)
+    cdef bint warm = feat != NULL and _load_features(Acore, Ra, xa, Bcore, Rb, xb, feat, polytopes, &S)
     cdef int r = -1
     if warm and S.n == 3:
         r = _warm_triangle(Acore, Ra, xa, Bcore, Rb, xb, tol, csum, &S, guess, pa, pb)
     if r < 0:
         r = gjk_distance(Acore, Ra, xa, Bcore, Rb, xb, tol, csum, guess, &S, warm, pa, pb)
     if feat != NULL:
-        _store_features(&S, r == GJK_SEPARATED, feat)
+        _store_features(&S, r == GJK_SEPARATED, polytopes, Ra, xa, Rb, xb, feat)
     if r == GJK_SEPARATED:
         d = sqrt(dot3(guess, guess))
         if d >= csum:
@@ -1060,7 +1102,7 @@ def contact_batch(const int[::1] core_kind, const double[:, ::1] core_params, co
                   double[:, ::1] guess, int[::1] code, double[::1] overlap, double[:, ::1] normal,
                   double[:, ::1] point, double[:, ::1] feat=None):
     """Crust contacts of the pairs (pi[k], pj[k]) of particles with shapes shape[i] from a ShapeTable's core
-    arrays: the nogil batch loop a pair style runs. guess[k] (and feat[k], 3 values, if given) warm-start
+    arrays: the nogil batch loop a pair style runs. guess[k] (and feat[k], NFEAT values, if given) warm-start
     pair k. Returns the contact count."""
     cdef Py_ssize_t k, m = pi.shape[0]
     cdef int i, j, si, sj, nc = 0
@@ -1068,8 +1110,8 @@ def contact_batch(const int[::1] core_kind, const double[:, ::1] core_params, co
     cdef double Ra[9]
     cdef double Rb[9]
     cdef double* fp = NULL
-    if feat is not None and (feat.shape[0] < m or feat.shape[1] != 3):
-        raise ValueError("feat must have shape (len(pi), 3)")
+    if feat is not None and (feat.shape[0] < m or feat.shape[1] != NFEAT):
+        raise ValueError(f"feat must have shape (len(pi), {NFEAT})")
     with nogil:
         for k in range(m):
             i = pi[k]

@@ -221,6 +221,50 @@ thermo 0
     assert sim.pair.energy == pytest.approx(0.5 * 1e5 * ov ** 2, rel=1e-6)
 
 
+def test_curved_warm_start_belongs_to_the_pair_shapes():
+    """A curved pair keeps its last GJK simplex as points in the two body frames, tagged with the two shapes.
+    Points that do not belong to the bodies would fool GJK: all at one world point (a - b = 0), the pair
+    reads as overlapping. With the tag of other shapes (a particle given another shape) the kernel drops
+    them: the forces are the cold start's, bit for bit."""
+    sim = make("""
+shape c cylinder 0.001 0.002
+create_atoms 1 single 0 0 0 shape c density 2500 quat 0.9 0.2 0.1 0.3
+create_atoms 1 single 0.0024 0.0006 0.0003 shape c density 2500 quat 0.8 -0.1 0.4 0.2
+pair_style convex/gjk
+pair_coeff * * kn 1e5 en 1.0
+fix 1 all nve/shape
+timestep 1e-7
+thermo 0
+""")
+    sim.run(10)
+    h = sim.pair.history.values
+    k = np.flatnonzero(np.any(h[:, 6:-1] != 0, axis=1))
+    assert len(k) == 1 and sim.pair.ncontacts == 1
+    d = sim.atom.data
+
+    def forces(values):
+        sim.pair.history.values[:] = values
+        d["f"][:] = 0.0
+        d["torque"][:] = 0.0
+        sim.pair.compute(advance=False)
+        return d["f"][:2].copy()
+
+    cold = h.copy()
+    cold[:, 6:] = 0.0
+    fooled = h.copy()                        # every simplex point at the midpoint of the two centres
+    mid = 0.5 * (d["x"][0] + d["x"][1])
+    for slot, i in ((0, 0), (3, 1)):
+        body = quat_to_matrix(d["quat"][i:i + 1])[0].T @ (mid - d["x"][i])
+        for p in range(3):
+            fooled[k, 6 + 6 * p + slot:9 + 6 * p + slot] = body
+    other = fooled.copy()
+    other[k, -1] += 1.0                      # made for other shapes
+    f_cold = forces(cold)
+    assert np.linalg.norm(forces(fooled)[0]) > 2.0 * np.linalg.norm(f_cold[0])
+    assert np.array_equal(forces(other), f_cold)
+    np.testing.assert_allclose(forces(h.copy()), f_cold, rtol=1e-6)
+
+
 def test_scale_is_the_same_as_a_bigger_shape():
     a = make("""
 shape c cube 0.001

@@ -452,13 +452,15 @@ def test_warm_start_and_batch():
         assert w[0] == pytest.approx(r[0], rel=1e-8, abs=1e-12)
 
 
-def test_simplex_warm_start_of_polytopes():
-    """The pair kernels store the vertex pairs of the last GJK simplex (feat) and restart GJK from them at the
-    next poses. After a small motion (one step of a bed) and after a large one (the stored vertices are no
-    longer the closest), the contact is the cold start's to the GJK tolerance; curved shapes store none."""
+def test_simplex_warm_start():
+    """The pair kernels store the last GJK simplex (feat) and restart GJK from it at the next poses: the
+    vertex pairs between two polytopes, the points in the two body frames otherwise. After a small motion
+    (one step of a bed) and after a large one (the stored points are no longer the closest), the contact is
+    the cold start's to the GJK tolerance."""
     rng = np.random.default_rng(29)
     shapes = [Box(0.5, 0.7, 0.9), cube(0.8), tetrahedron(1.0), pinacoid(1.0, 0.8, 0.6),
-              Polyhedron(rng.normal(size=(30, 3)) * [0.6, 0.5, 0.4]), Cylinder(0.4, 1.0), Sphere(0.5)]
+              Polyhedron(rng.normal(size=(30, 3)) * [0.6, 0.5, 0.4]), Cylinder(0.4, 1.0), Sphere(0.5),
+              Ellipsoid(0.6, 0.4, 0.3), Cone(0.4, 0.9)]
     table = ShapeTable(shapes)
     N = 80
     shape = rng.integers(len(shapes), size=N).astype(np.int32)
@@ -474,14 +476,21 @@ def test_simplex_warm_start_of_polytopes():
                            table.verts, shape, x, quat, pi, pj, tol, guess, *out, feat)
         return out
 
-    feat = np.zeros((m, 3))
+    feat = np.zeros((m, _gjk.WARM_START_VALUES))
     guess = np.zeros((m, 3))
     code0 = batch(x, quat, guess, feat)[0]
     poly = np.isin(table.core_kind, (1, 6))[shape]       # boxes and polyhedra (kind codes, shapes/base.py)
     both = poly[pi] & poly[pj]
-    stored = feat[:, 0] > 0
-    assert not np.any(stored & ~both)                     # a curved body has no vertices to store
-    assert np.count_nonzero(stored & (code0 == 0)) > 100   # separated polytope pairs keep their simplex
+    stored = np.any(feat != 0, axis=1)
+    assert np.all(feat[both][:, 3:] == 0)                 # polytopes: vertex codes in the first 3 values
+    assert np.count_nonzero(stored & (code0 == 0) & both) > 100
+    assert np.count_nonzero(stored & (code0 == 0) & ~both) > 100
+    # the stored body-frame points are points of the cores: within the bodies' bounding spheres
+    core_r = np.array([s.bounding_radius for s in shapes])
+    for k in range(3):
+        qa, qb = feat[~both, 6 * k:6 * k + 3], feat[~both, 6 * k + 3:6 * k + 6]
+        assert np.all(np.linalg.norm(qa, axis=1) <= core_r[shape[pi[~both]]] * (1 + 1e-12))
+        assert np.all(np.linalg.norm(qb, axis=1) <= core_r[shape[pj[~both]]] * (1 + 1e-12))
     for step, (dx, dth) in enumerate([(1e-5, 1e-5), (0.05, 0.3)]):
         x2 = x + rng.normal(scale=dx, size=x.shape)
         quat2 = quat + rng.normal(scale=dth, size=quat.shape)
@@ -490,13 +499,14 @@ def test_simplex_warm_start_of_polytopes():
         cold = batch(x2, quat2, np.zeros((m, 3)), None)
         assert np.array_equal(warm[0] > 0, cold[0] > 0)
         hit = cold[0] > 0
-        assert np.count_nonzero(hit & both) > 10
+        assert np.count_nonzero(hit & both) > 10 and np.count_nonzero(hit & ~both) > 10
         np.testing.assert_allclose(warm[1][hit], cold[1][hit], rtol=1e-8, atol=1e-12)
         # polytope pairs converge to the exact contact from either start; curved ones to ~sqrt(tol) in the
-        # normal (the distance is stationary in the direction), the warm start then is only the direction
+        # normal (the distance is stationary in the direction)
         hp = hit & both
         np.testing.assert_allclose(warm[2][hp], cold[2][hp], atol=1e-9)
         np.testing.assert_allclose(warm[3][hp], cold[3][hp], atol=1e-9)
+        np.testing.assert_allclose(warm[2][hit], cold[2][hit], atol=1e-4)
 
 
 # ---------------------------------------------------------------- degenerate configurations

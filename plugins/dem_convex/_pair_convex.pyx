@@ -9,16 +9,19 @@ the support point of s R K in direction d is s R s_K(R^T d) (support functions i
 direction), i.e. the support of the body scaled by s; its crust is s times the shape's crust. A sphere
 (shape -1, or a table sphere) is a point core with a crust equal to its radius: exact.
 
-History per pair (values[k, 0:9]): the tangential spring xi (3, when ks > 0), then the GJK warm start:
-the direction of the last core separation pa - pb (3, unit; also the pre-test axis) and, between two
-polytopes, the vertex pairs of the last simplex (3)."""
+History per pair (values[k, 0:HISTORY]): the tangential spring xi (3, when ks > 0), then the GJK warm
+start: the direction of the last core separation pa - pb (3, unit; also the pre-test axis), the last
+simplex (NFEAT, see dem/_gjk.pyx: vertex pairs of polytopes, body-frame points otherwise) and the two
+shapes it was made for (1: a particle given another shape starts cold)."""
 cimport numpy as cnp
 from libc.math cimport sqrt, fabs
 from dem_contact.law cimport forget, hooke, rolling_torque
-from dem.shapes._support cimport ShapeRef, quat_to_rot, support_world
-from dem._gjk cimport crust_contact, CONTACT_NONE, CONTACT_CRUST
+from dem.shapes._support cimport ShapeRef, quat_to_rot, support_world, BOX, POLYHEDRON, MARGIN
+from dem._gjk cimport crust_contact, CONTACT_NONE, CONTACT_CRUST, NFEAT
 
 ctypedef cnp.int64_t i64
+
+HISTORY = 7 + NFEAT                   # history values per pair
 
 cdef double MARGIN_SAFETY = 1e-12     # margins are kept this much (relative) short of the round-off
 cdef double SQRT_HALF = 0.7071067811865476   # ||R' - R||_2 = ||R' - R||_F / sqrt(2) between two rotations
@@ -44,6 +47,25 @@ cdef inline void _pose(int i, int s, const double[::1] radius, const int[::1] is
     ref.nverts = core_nv[s]
     ref.verts = &verts[core_voff[s], 0]
     c[0] = crust[s] * radius[i] / srad[s]
+
+
+cdef inline bint _polytope(int s, const int[::1] is_sphere, const int[::1] core_kind,
+                           const double[:, ::1] core_params) noexcept nogil:
+    """A shape whose GJK warm start is its vertex pairs (dem/_gjk.pyx)."""
+    return (s >= 0 and not is_sphere[s] and (core_kind[s] == BOX or core_kind[s] == POLYHEDRON)
+            and core_params[s, MARGIN] == 0.0)
+
+
+cdef inline void _forget_points(double* h, int si, int sj, const int[::1] is_sphere, const int[::1] core_kind,
+                                const double[:, ::1] core_params) noexcept nogil:
+    """A pair found apart drops a simplex of body-frame points (curved bodies): GJK from such a simplex ends on
+    points of its own within the tolerance, so keeping it across a separation would make the results depend
+    on how long the pair stayed listed (margins, rebuilds). Vertex pairs lead to the same final simplex from
+    any start and are kept."""
+    cdef int d
+    if not (_polytope(si, is_sphere, core_kind, core_params) and _polytope(sj, is_sphere, core_kind, core_params)):
+        for d in range(NFEAT):
+            h[d] = 0.0
 
 
 cdef inline double _extent(const ShapeRef* ref, const double* R, const double* x, const double* u) noexcept nogil:
@@ -140,7 +162,9 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
     cdef double F[3]
     cdef double tr[3]
     cdef double g[3]
-    cdef double feat[3]
+    cdef double feat[NFEAT]
+    cdef double* fp
+    cdef double tag
     cdef double u[3]
     cdef double sb[3]
     cdef double r2, r, rsum, delta, meff, ca, cb, energy = 0.0, ov, maxov = 0.0, rmin, gn
@@ -174,13 +198,14 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
             dx[2] = x[i, 2] - x[j, 2]
             r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]
             rsum = radius[i] + radius[j]
+            sj = shape[j]
             if r2 >= rsum * rsum:
                 if advance:
                     margin[k] = sqrt(r2) - rsum - MARGIN_SAFETY * rsum
+                    _forget_points(&hist[k, 6], si, sj, is_sphere, core_kind, core_params)
                     if use_xi:
                         forget(&hist[k, 0])
                 continue
-            sj = shape[j]
             sph_j = sj < 0 or is_sphere[sj] != 0
             if sph_i and sph_j:
                 r = sqrt(r2)
@@ -222,14 +247,24 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                         if new_axis:            # the axis stays fixed while the pair is apart
                             for d in range(3):
                                 hist[k, 3 + d] = g[d]
+                        _forget_points(&hist[k, 6], si, sj, is_sphere, core_kind, core_params)
                         if use_xi:
                             forget(&hist[k, 0])
                     continue
                 ngjk += 1
-                for d in range(3):
-                    feat[d] = hist[k, 6 + d]
-                code = crust_contact(&A, ca, &rot[i, 0], &x[i, 0], &B, cb, &rot[j, 0], &x[j, 0], tol, g,
-                                     &feat[0], &delta, n, p)
+                tag = (si + 1) * 65536.0 + sj + 2.0         # the shapes the warm start was made for
+                if advance:
+                    if hist[k, 6 + NFEAT] != tag:
+                        for d in range(NFEAT):
+                            hist[k, 6 + d] = 0.0
+                        hist[k, 6 + NFEAT] = tag
+                    fp = &hist[k, 6]
+                else:                # a setup pass changes no history: a copy
+                    for d in range(NFEAT):
+                        feat[d] = hist[k, 6 + d] if hist[k, 6 + NFEAT] == tag else 0.0
+                    fp = &feat[0]
+                code = crust_contact(&A, ca, &rot[i, 0], &x[i, 0], &B, cb, &rot[j, 0], &x[j, 0], tol, g, fp,
+                                     &delta, n, p)
                 if advance:          # warm start; a setup pass changes no history
                     if code == CONTACT_CRUST:
                         for d in range(3):   # n is g / |g| already
@@ -239,8 +274,6 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                         gn = 1.0 / sqrt(gn) if gn > 0.0 else 0.0
                         for d in range(3):
                             hist[k, 3 + d] = g[d] * gn
-                    for d in range(3):
-                        hist[k, 6 + d] = feat[d]
                 if code == CONTACT_NONE:
                     if use_xi and advance:
                         forget(&hist[k, 0])

@@ -29,8 +29,9 @@ class PairConvexGJK(PairCoefficients, Pair):
     velocity of the two surfaces there, the reduced mass m_ij and torques from the lever centre of mass ->
     contact point. Coefficients per type pair as for `pair_style sphere` (rolling resistance applies
     between two spheres only). The tangential spring (ks > 0) and the GJK warm start (the last core
-    separation and, between boxes/polyhedra, the vertices of the last simplex: a lasting contact then
-    costs one support query) are contact history that survives rebuilds, restarts and migration.
+    separation and the last simplex: between boxes/polyhedra its vertices, otherwise its points in the
+    two body frames; a lasting contact then costs about one support query) are contact history that
+    survives rebuilds, restarts and migration.
     Pairs proved apart (bounding spheres, or a projection on the last separating axis) are skipped until
     the particles have moved or turned enough to close that gap, which changes no result.
 
@@ -81,7 +82,7 @@ class PairConvexGJK(PairCoefficients, Pair):
     def init(self):
         self.use_xi = self.check_coefficients()
         if self.history is None:
-            self.history = History(self.sim, "pair_convex", 9)
+            self.history = History(self.sim, "pair_convex", _pair_convex.HISTORY)
             self.sim.neighbor.histories.append(self.history)
         sim = self.sim
         atom = sim.atom
