@@ -1,9 +1,11 @@
 """Cost of convex particles: a dense bed of cubes (pair_style convex/gjk, fix nve/shape) against the same
 bed made of spheres of equal volume (pair_style sphere, fix nve/sphere), one core. Grains3D reports about
-5x for cubes over spheres (Part III sec 2.5); the goal here is <= 3x. `--shape cylinder` times a bed of
-cylinders (D = L, same volume) instead: a curved body, no vertex warm start.
+5x for cubes over spheres (Part III sec 2.5); the goal here is <= 3x. `--shape cylinder` or `ellipsoid`
+times a bed of cylinders (D = L) or ellipsoids (semi-axes 2:1.5:1) of the same volume instead: curved
+bodies, whose GJK warm start is a simplex of body-frame points rather than vertices.
 
-    python benchmarks/cube_bed.py [--shape cube|cylinder] [--N 1000] [--steps 5000] [--repeats 3] [--settle 150000]
+    python benchmarks/cube_bed.py [--shape cube|cylinder|ellipsoid] [--N 1000] [--steps 5000] [--repeats 3]
+                                  [--settle 150000]
 
 Both beds are built alike: N particles of volume (2.418 mm)^3 (the cubes of Part III sec 4.1: equal
 volume to a sphere of radius 1.5 mm) at the same random positions (non-overlapping bounding spheres of
@@ -24,8 +26,10 @@ import dem
 A = 0.002418          # cube edge (m): volume of a sphere of radius 1.5 mm
 RC = 2.25 ** (1.0 / 3.0) * 1e-3   # radius of the D = L cylinder of that volume: 2 pi RC^3 = 4/3 pi (1.5 mm)^3
 LAW = "kn 1e5 en 0.73 mu 0.55"
+KE = 1.125 ** (1.0 / 3.0) * 1e-3   # ellipsoid of semi-axes 2k, 1.5k, k of that volume: 3 k^3 = (1.5 mm)^3
 SHAPES = {"cube": (f"cube {A}", A * 3.0 ** 0.5 / 2.0),           # shape command, bounding radius
-          "cylinder": (f"cylinder {RC} {2.0 * RC}", RC * 2.0 ** 0.5)}
+          "cylinder": (f"cylinder {RC} {2.0 * RC}", RC * 2.0 ** 0.5),
+          "ellipsoid": (f"ellipsoid {2.0 * KE} {1.5 * KE} {KE}", 2.0 * KE)}
 
 
 def styles(kind):
@@ -38,7 +42,7 @@ def build(kind, n, settle, path):
     """Random bounding spheres (the same positions for cubes and spheres: the spheres are made with the
     cubes' bounding radius, then shrunk to the volume of a cube), settled under gravity."""
     import math
-    rb = SHAPES["cylinder" if kind == "cylinder" else "cube"][1]
+    rb = SHAPES["cube" if kind == "sphere" else kind][1]
     rs = A * (3.0 / (4.0 * math.pi)) ** (1.0 / 3.0)        # sphere of the cube's volume
     L = 17.5 * A * (n / 1000.0) ** (1.0 / 3.0)
     H = n * 4.0 / 3.0 * math.pi * rb ** 3 / (0.2 * L * L)   # bounding spheres at 20 % volume fraction
