@@ -5,7 +5,7 @@ A shape is (kind, params[NPARAM], verts, nverts) in its body frame (centre of ma
 along the principal axes). ``params[MARGIN]`` erodes any kind by a ball: support(d) - margin*d/|d|, used
 for the cores of smooth shapes (see dem/shapes/base.py). Kind codes match dem/shapes/base.py.
 """
-from libc.math cimport copysign, signbit, sqrt
+from libc.math cimport signbit, sqrt
 
 cdef enum:
     SPHERE = 0

@@ -11,8 +11,8 @@ direction), i.e. the support of the body scaled by s; its crust is s times the s
 
 History per pair (values[k, 0:HISTORY]): the tangential spring xi (3, when ks > 0), then the GJK warm
 start: the direction of the last core separation pa - pb (3, unit; also the pre-test axis), the last
-simplex (NFEAT, see dem/_gjk.pyx: vertex pairs of polytopes, body-frame points otherwise) and the two
-shapes it was made for (1: a particle given another shape starts cold)."""
+simplex (NFEAT, see dem/_gjk.pyx: vertex pairs of polytopes, body-frame points otherwise) and a tag of the
+two shapes it was made for (1 value: a particle given another shape starts cold)."""
 cimport numpy as cnp
 from libc.math cimport sqrt, fabs
 from dem_contact.law cimport forget, hooke, rolling_torque
