@@ -409,12 +409,16 @@ run 10
 
 
 def test_restart_continues_bitwise(tmp_path):
+    """Cubes, tetrahedra and cylinders: the contact history (springs, vertex pairs of polytopes, body-frame
+    simplices of curved pairs) crosses a restart exactly."""
     script = """
 shape c cube 0.002
 shape t tetrahedron 0.003
+shape y cylinder 0.001 0.002
 region fill block -0.0098 0.0098 -0.0098 0.0098 -0.0098 0.0098
 create_atoms 1 random 25 11 fill shape c quat random density 2500
 set atom 1:8 shape t
+set atom 9:14 shape y
 pair_style convex/gjk
 pair_coeff * * kn 1e4 en 0.5 mu 0.5 gamma_t 100 ks 3000
 fix 1 all nve/shape
@@ -427,12 +431,13 @@ thermo 0
     ref.run(16000)
     ref.command(f"write_restart {tmp_path}/r.bin")
     at_restart = (ref.pair.ncontacts, ref.modify.find("w").ncontacts)   # contact history crosses it
+    curved = np.count_nonzero(np.any(ref.pair.history.values[:, 9:-1] != 0, axis=1))
     ref.run(3000)
     sim = dem.Simulation(screen=False)
     sim.commands(f"read_restart {tmp_path}/r.bin\n"     # the shapes come back from the restart
-                 + script.split("set atom 1:8 shape t")[1])
+                 + script.split("set atom 9:14 shape y")[1])
     sim.run(3000)
-    assert at_restart[0] >= 3 and at_restart[1] >= 3
+    assert at_restart[0] >= 3 and at_restart[1] >= 3 and curved >= 1
     for name in ("x", "v", "omega", "angmom", "quat"):
         assert np.array_equal(sim.gather(name), ref.gather(name)), name
 
