@@ -460,7 +460,7 @@ def test_simplex_warm_start():
     rng = np.random.default_rng(29)
     shapes = [Box(0.5, 0.7, 0.9), cube(0.8), tetrahedron(1.0), pinacoid(1.0, 0.8, 0.6),
               Polyhedron(rng.normal(size=(30, 3)) * [0.6, 0.5, 0.4]), Cylinder(0.4, 1.0), Sphere(0.5),
-              Ellipsoid(0.6, 0.4, 0.3), Cone(0.4, 0.9)]
+              Ellipsoid(0.6, 0.4, 0.3), Cone(0.4, 0.9), Superquadric(0.5, 0.4, 0.3, 4.0, 4.0)]
     table = ShapeTable(shapes)
     N = 80
     shape = rng.integers(len(shapes), size=N).astype(np.int32)
