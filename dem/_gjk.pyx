@@ -27,7 +27,7 @@ cimport numpy as cnp
 from libc.math cimport sqrt, fabs, cos, sin, INFINITY
 from dem._math cimport cross3, det3, dot3, sub3
 from dem.shapes._support cimport (ShapeRef, support_world, support_world_id, vertex_world, posed_point,
-                                  quat_to_rot, NPARAM, BOX, POLYHEDRON, MARGIN)
+                                  quat_to_rot, polytope_core, NPARAM, MARGIN)
 
 cdef enum:
     GJK_MAXIT = 128
@@ -900,10 +900,6 @@ cdef double FEAT_BASE = 2097152.0
 cdef double FEAT_INV = 1.0 / 2097152.0
 
 
-cdef inline bint _polytope(const ShapeRef* s) noexcept nogil:
-    return (s.kind == BOX or s.kind == POLYHEDRON) and s.params[MARGIN] == 0.0
-
-
 cdef inline void _body_point(const double* R, const double* x, const double* p, double* q) noexcept nogil:
     """q = R^-1 (p - x) for R = scale x rotation: R^T (p - x) / scale^2."""
     cdef double r[3]
@@ -981,7 +977,8 @@ cdef int crust_contact(const ShapeRef* Acore, double crust_a, const double* Ra, 
     cdef double pb[3]
     cdef double d, depth, h, csum = crust_a + crust_b
     cdef int c, code
-    cdef bint polytopes = _polytope(Acore) and _polytope(Bcore)
+    cdef bint polytopes = (polytope_core(Acore.kind, Acore.params[MARGIN])
+                           and polytope_core(Bcore.kind, Bcore.params[MARGIN]))
     cdef bint warm = feat != NULL and _load_features(Acore, Ra, xa, Bcore, Rb, xb, feat, polytopes, &S)
     cdef int r = -1
     if warm and S.n == 3:

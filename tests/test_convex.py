@@ -196,19 +196,24 @@ def test_elastic_collisions_conserve_energy_and_momenta():
     assert np.linalg.norm(l1 - l0) < 1e-4 * np.linalg.norm(l0) + 1e-13
 
 
-def test_contact_matches_geometry_and_newton_third_law():
-    """Forces of one cube-cube contact: overlap/normal/point from dem.geometry, equal and opposite
-    forces, torques = lever x force about each centre of mass."""
-    sim = make("""
-shape c cube 0.002
+def two_bodies(shape, x2):
+    """Two particles of `shape` (a shape command's arguments), at the origin and at x2, turned."""
+    return make(f"""
+shape c {shape}
 create_atoms 1 single 0 0 0 shape c density 2500 quat 0.9 0.2 0.1 0.3
-create_atoms 1 single 0.00185 0.0004 0.0003 shape c density 2500 quat 0.8 -0.1 0.4 0.2
+create_atoms 1 single {x2} shape c density 2500 quat 0.8 -0.1 0.4 0.2
 pair_style convex/gjk
 pair_coeff * * kn 1e5 en 1.0
 fix 1 all nve/shape
 timestep 1e-7
 thermo 0
 """)
+
+
+def test_contact_matches_geometry_and_newton_third_law():
+    """Forces of one cube-cube contact: overlap/normal/point from dem.geometry, equal and opposite
+    forces, torques = lever x force about each centre of mass."""
+    sim = two_bodies("cube 0.002", "0.00185 0.0004 0.0003")
     sim.run(0)
     d = sim.atom.data
     shape = sim.shapes.shapes[0]
@@ -226,16 +231,7 @@ def test_curved_warm_start_belongs_to_the_pair_shapes():
     Points that do not belong to the bodies would fool GJK: all at one world point (a - b = 0), the pair
     reads as overlapping. With the tag of other shapes (a particle given another shape) the kernel drops
     them: the forces are the cold start's, bit for bit."""
-    sim = make("""
-shape c cylinder 0.001 0.002
-create_atoms 1 single 0 0 0 shape c density 2500 quat 0.9 0.2 0.1 0.3
-create_atoms 1 single 0.0024 0.0006 0.0003 shape c density 2500 quat 0.8 -0.1 0.4 0.2
-pair_style convex/gjk
-pair_coeff * * kn 1e5 en 1.0
-fix 1 all nve/shape
-timestep 1e-7
-thermo 0
-""")
+    sim = two_bodies("cylinder 0.001 0.002", "0.0024 0.0006 0.0003")
     sim.run(10)
     h = sim.pair.history.values
     k = np.flatnonzero(np.any(h[:, 6:-1] != 0, axis=1))

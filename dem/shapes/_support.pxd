@@ -31,6 +31,12 @@ cdef void support_world(const ShapeRef* s, const double* R, const double* x, con
                         double* out) noexcept nogil
 
 
+cdef inline bint polytope_core(int kind, double margin) noexcept nogil:
+    """A body with vertices (box or polyhedron, not eroded by a margin): supports are vertices, which GJK
+    can name by index (support_world_id) and warm-start from."""
+    return (kind == BOX or kind == POLYHEDRON) and margin == 0.0
+
+
 # inline: GJK's hot path on polytopes (defined here so that the compiler can inline them into the kernels)
 cdef inline void posed_point(const double* R, const double* x, const double* p, double* out) noexcept nogil:
     """out = R p + x: a body-frame point posed at (R, x)."""
@@ -51,7 +57,7 @@ cdef inline int support_world_id(const ShapeRef* sh, const double* R, const doub
     db[0] = R[0] * d[0] + R[3] * d[1] + R[6] * d[2]
     db[1] = R[1] * d[0] + R[4] * d[1] + R[7] * d[2]
     db[2] = R[2] * d[0] + R[5] * d[1] + R[8] * d[2]
-    if sh.params[MARGIN] != 0.0 or (sh.kind != BOX and sh.kind != POLYHEDRON):
+    if not polytope_core(sh.kind, sh.params[MARGIN]):
         support(sh.kind, sh.params, sh.verts, sh.nverts, db, p)
     elif sh.kind == BOX:
         # copysign(h, db) from the corner bits: gcc spills copysign's operand through memory (a stalled

@@ -16,7 +16,7 @@ two shapes it was made for (1 value: a particle given another shape starts cold)
 cimport numpy as cnp
 from libc.math cimport sqrt, fabs
 from dem_contact.law cimport forget, hooke, rolling_torque
-from dem.shapes._support cimport ShapeRef, quat_to_rot, support_world, BOX, POLYHEDRON, MARGIN
+from dem.shapes._support cimport ShapeRef, quat_to_rot, support_world, polytope_core, MARGIN
 from dem._gjk cimport crust_contact, CONTACT_NONE, CONTACT_CRUST, NFEAT
 
 ctypedef cnp.int64_t i64
@@ -52,8 +52,7 @@ cdef inline void _pose(int i, int s, const double[::1] radius, const int[::1] is
 cdef inline bint _polytope(int s, const int[::1] is_sphere, const int[::1] core_kind,
                            const double[:, ::1] core_params) noexcept nogil:
     """A shape whose GJK warm start is its vertex pairs (dem/_gjk.pyx)."""
-    return (s >= 0 and not is_sphere[s] and (core_kind[s] == BOX or core_kind[s] == POLYHEDRON)
-            and core_params[s, MARGIN] == 0.0)
+    return s >= 0 and not is_sphere[s] and polytope_core(core_kind[s], core_params[s, MARGIN])
 
 
 cdef inline void _forget_points(double* h, int si, int sj, const int[::1] is_sphere, const int[::1] core_kind,
