@@ -11,8 +11,9 @@ Both beds are built alike: N particles of volume (2.418 mm)^3 (the cubes of Part
 volume to a sphere of radius 1.5 mm) at the same random positions (non-overlapping bounding spheres of
 the cubes, 20 % of the volume; cubes randomly oriented), in a box periodic in x and y (17.5 edges wide
 for N = 1000) with a floor, kn = 1e5 N/m, en = 0.73, mu = 0.55, density 2500, dt = 2e-6 s (Table 5/6),
-then settled under gravity for --settle steps (written to a restart once). The settled beds are timed for --steps steps, alternating cube and sphere runs; the
-figure is the median of the paired ratios of the loop time per particle-step (and of the pair stage
+with the tangential spring and damping of inputs/in.drum (ks = 2/7 kn, gamma_t = 2000 1/s: without them
+friction exerts no force), then settled under gravity for --settle steps (written to a restart once).
+The settled beds are timed for --steps steps, alternating cube and sphere runs; the figure is the median of the paired ratios of the loop time per particle-step (and of the pair stage
 alone). The GJK calls, separating-axis pre-tests and margin skips per step are reported too.
 """
 import argparse
@@ -25,7 +26,7 @@ import dem
 
 A = 0.002418          # cube edge (m): volume of a sphere of radius 1.5 mm
 RC = 2.25 ** (1.0 / 3.0) * 1e-3   # radius of the D = L cylinder of that volume: 2 pi RC^3 = 4/3 pi (1.5 mm)^3
-LAW = "kn 1e5 en 0.73 mu 0.55"
+LAW = "kn 1e5 en 0.73 mu 0.55 gamma_t 2000 ks 28571"   # as inputs/in.drum (friction needs gamma_t or ks)
 KE = 1.125 ** (1.0 / 3.0) * 1e-3   # ellipsoid of semi-axes 2k, 1.5k, k of that volume: 3 k^3 = (1.5 mm)^3
 SHAPES = {"cube": (f"cube {A}", A * 3.0 ** 0.5 / 2.0),           # shape command, bounding radius
           "cylinder": (f"cylinder {RC} {2.0 * RC}", RC * 2.0 ** 0.5),

@@ -261,6 +261,30 @@ def test_curved_warm_start_belongs_to_the_pair_shapes():
     np.testing.assert_allclose(forces(h.copy()), f_cold, rtol=1e-6)
 
 
+def test_touching_pair_skips_the_pretest_and_still_separates():
+    """A pair that touched at its last call goes to GJK without the separating-axis pre-test (its shape tag
+    is stored negative); moved apart it has no force, and the next call pre-tests it again. Moved back, the
+    contact is the geometry's."""
+    sim = two_bodies("cube 0.002", "0.00268 0.0004 0.0003")     # overlap ~1 % of the edge
+    p, d = sim.pair, sim.atom.data
+    sim.run(2)
+    assert p.ncontacts == 1 and p.nsep == 0 and p.history.values[0, -1] < 0
+    touching = d["x"][1].copy()
+    d["x"][1] = touching + [0.0004, 0.0, 0.0]       # cores apart, bounding spheres still overlapping
+    d["v"][:] = 0.0
+    sim.run(1)
+    assert p.ncontacts == 0 and p.nsep == 0 and not d["f"][:2].any()
+    assert p.history.values[0, -1] > 0
+    sim.run(1)
+    assert p.nsep == 2              # pre-tested again and rejected (the run's setup pass, then its step)
+    d["x"][1] = touching
+    sim.run(0)
+    ov, n, _ = geometry.contact(sim.shapes.shapes[0], d["x"][0], d["quat"][0], sim.shapes.shapes[0],
+                                d["x"][1], d["quat"][1])
+    assert p.ncontacts == 1 and ov > 0
+    np.testing.assert_allclose(d["f"][0], 1e5 * ov * n, rtol=1e-6)
+
+
 def test_scale_is_the_same_as_a_bigger_shape():
     a = make("""
 shape c cube 0.001

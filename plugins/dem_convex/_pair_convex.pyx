@@ -12,7 +12,8 @@ direction), i.e. the support of the body scaled by s; its crust is s times the s
 History per pair (values[k, 0:HISTORY]): the tangential spring xi (3, when ks > 0), then the GJK warm
 start: the direction of the last core separation pa - pb (3, unit; also the pre-test axis), the last
 simplex (NFEAT, see dem/_gjk.pyx: vertex pairs of polytopes, body-frame points otherwise) and a tag of the
-two shapes it was made for (1 value: a particle given another shape starts cold)."""
+two shapes it was made for (1 value: a particle given another shape starts cold), negative while the pair
+touched at its last GJK call (such a pair goes to GJK without the pre-test)."""
 cimport numpy as cnp
 from libc.math cimport sqrt, fabs
 from dem_contact.law cimport forget, hooke, rolling_torque
@@ -201,6 +202,7 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
             if r2 >= rsum * rsum:
                 if advance:
                     margin[k] = sqrt(r2) - rsum - MARGIN_SAFETY * rsum
+                    hist[k, 6 + NFEAT] = fabs(hist[k, 6 + NFEAT])
                     _forget_points(&hist[k, 6], si, sj, is_sphere, core_kind, core_params)
                     if use_xi:
                         forget(&hist[k, 0])
@@ -234,11 +236,15 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                         g[d] *= gn
                 for d in range(3):
                     u[d] = g[d]
-                # separating-axis pre-test along u (from j to i): gap = min_A u.a - max_B u.b
-                for d in range(3):
-                    sb[d] = -u[d]
-                gap = (u[0] * dx[0] + u[1] * dx[1] + u[2] * dx[2] - _extent(&A, &rot[i, 0], &x[i, 0], sb)
-                       - _extent(&B, &rot[j, 0], &x[j, 0], u) - ca - cb)
+                tag = (si + 1) * 65536.0 + sj + 2.0         # the shapes the warm start was made for
+                # separating-axis pre-test along u (from j to i): gap = min_A u.a - max_B u.b; not for a pair
+                # that touched at its last call (tag stored negative): it would almost never reject it
+                gap = -1.0
+                if hist[k, 6 + NFEAT] != -tag:
+                    for d in range(3):
+                        sb[d] = -u[d]
+                    gap = (u[0] * dx[0] + u[1] * dx[1] + u[2] * dx[2] - _extent(&A, &rot[i, 0], &x[i, 0], sb)
+                           - _extent(&B, &rot[j, 0], &x[j, 0], u) - ca - cb)
                 if gap >= 0.0:
                     nsep += 1
                     if advance:      # (a setup pass forgets no spring: it must not skip the pair later)
@@ -251,20 +257,19 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                             forget(&hist[k, 0])
                     continue
                 ngjk += 1
-                tag = (si + 1) * 65536.0 + sj + 2.0         # the shapes the warm start was made for
                 if advance:
-                    if hist[k, 6 + NFEAT] != tag:
+                    if fabs(hist[k, 6 + NFEAT]) != tag:
                         for d in range(NFEAT):
                             hist[k, 6 + d] = 0.0
-                        hist[k, 6 + NFEAT] = tag
                     fp = &hist[k, 6]
                 else:                # a setup pass changes no history: a copy
                     for d in range(NFEAT):
-                        feat[d] = hist[k, 6 + d] if hist[k, 6 + NFEAT] == tag else 0.0
+                        feat[d] = hist[k, 6 + d] if fabs(hist[k, 6 + NFEAT]) == tag else 0.0
                     fp = &feat[0]
                 code = crust_contact(&A, ca, &rot[i, 0], &x[i, 0], &B, cb, &rot[j, 0], &x[j, 0], tol, g, fp,
                                      &delta, n, p)
                 if advance:          # warm start; a setup pass changes no history
+                    hist[k, 6 + NFEAT] = tag if code == CONTACT_NONE else -tag
                     if code == CONTACT_CRUST:
                         for d in range(3):   # n is g / |g| already
                             hist[k, 3 + d] = n[d]

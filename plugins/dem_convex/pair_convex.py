@@ -45,7 +45,7 @@ class PairConvexGJK(PairCoefficients, Pair):
         shape c cube 0.002
         create_atoms 1 random 1000 4821 box shape c quat random density 2500
         pair_style convex/gjk
-        pair_coeff * * kn 1e5 en 0.73 mu 0.55
+        pair_coeff * * kn 1e5 en 0.73 mu 0.55 gamma_t 2000 ks 28571
     """
 
     style = "convex/gjk"

@@ -20,12 +20,13 @@ class PairSphere(PairCoefficients, Pair):
     reduced mass m_ij (eq. 16); tangential force -min(mu |F_n|, |-2 gamma_t m_ij U_rt - ks xi|) along
     the trial force, xi the tangential displacement kept as contact history while ks > 0 (it survives
     neighbor-list rebuilds and restarts). Optional rolling resistance: a torque mu_roll R_eff |F_n|
-    opposing the relative angular velocity. Defaults: mu 0, gamma_t 0 (1/s), ks 0 (N/m), mu_roll 0.
+    opposing the relative angular velocity. Defaults: mu 0, gamma_t 0 (1/s), ks 0 (N/m), mu_roll 0
+    (with gamma_t = ks = 0 there is no tangential force whatever mu is: give one of them).
 
-    Example::
+    Example (Part III Table 6, with ks = 2/7 kn and gamma_t as in inputs/in.drum)::
 
         pair_style sphere
-        pair_coeff * * kn 1e5 en 0.73 mu 0.55 gamma_t 0 ks 0
+        pair_coeff * * kn 1e5 en 0.73 mu 0.55 gamma_t 2000 ks 28571
     """
 
     style = "sphere"
