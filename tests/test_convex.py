@@ -448,10 +448,16 @@ timestep 5e-6
 thermo 0
 """
     ref = make(script)
-    ref.run(16000)
+
+    def held():      # pair and wall contacts and a curved pair's simplex: the history that crosses the restart
+        return (ref.pair.ncontacts, ref.modify.find("w").ncontacts,
+                np.count_nonzero(np.any(ref.pair.history.values[:, 9:-1] != 0, axis=1)))
+
+    ref.run(14000)
+    while ref.update.ntimestep < 30000 and not (held()[0] >= 3 and held()[1] >= 3 and held()[2] >= 1):
+        ref.run(1000)    # curved contacts come and go while the pile settles
     ref.command(f"write_restart {tmp_path}/r.bin")
-    at_restart = (ref.pair.ncontacts, ref.modify.find("w").ncontacts)   # contact history crosses it
-    curved = np.count_nonzero(np.any(ref.pair.history.values[:, 9:-1] != 0, axis=1))
+    *at_restart, curved = held()
     ref.run(3000)
     sim = dem.Simulation(screen=False)
     sim.commands(f"read_restart {tmp_path}/r.bin\n"     # the shapes come back from the restart
