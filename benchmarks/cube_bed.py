@@ -13,8 +13,9 @@ the cubes, 20 % of the volume; cubes randomly oriented), in a box periodic in x 
 for N = 1000) with a floor, kn = 1e5 N/m, en = 0.73, mu = 0.55, density 2500, dt = 2e-6 s (Table 5/6),
 with the tangential spring and damping of inputs/in.drum (ks = 2/7 kn, gamma_t = 2000 1/s: without them
 friction exerts no force), then settled under gravity for --settle steps (written to a restart once).
-The settled beds are timed for --steps steps, alternating cube and sphere runs; the figure is the median of the paired ratios of the loop time per particle-step (and of the pair stage
-alone). The GJK calls, separating-axis pre-tests and margin skips per step are reported too.
+The settled beds are timed for --steps steps, alternating cube and sphere runs; the figure is the median
+of the paired ratios of the loop time per particle-step (and of the pair stage alone). The GJK calls,
+separating-axis pre-tests and margin skips per step are reported too.
 """
 import argparse
 import os

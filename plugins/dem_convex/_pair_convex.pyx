@@ -72,7 +72,6 @@ cdef inline double _extent(const ShapeRef* ref, const double* R, const double* x
     """Support value h(u) = max over the posed core of u.(p - x): closed form for boxes, cylinders and
     points (the common cases of the pre-test), the support function otherwise."""
     cdef double db0, db1, db2
-    cdef double dn[3]
     cdef double sp[3]
     if ref.kind == 0 and ref.params[0] == 0.0 and ref.params[7] == 0.0:
         return 0.0                                     # a point (the core of a sphere particle)

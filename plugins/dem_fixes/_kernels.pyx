@@ -12,7 +12,6 @@ rim point of each end disc of a cylinder, apex and base rim point of a cone; smo
 a face or an edge lying on the wall gets its middle instead of one arbitrary corner, and the point
 moves continuously as the body tilts (a single corner below the plane is the deepest point again)."""
 cimport numpy as cnp
-from libc.math cimport sqrt
 from dem_contact.law cimport forget, hooke, push_at
 from dem.shapes._support cimport ShapeRef, Surface, plane_touch, pose_shape
 
