@@ -26,8 +26,8 @@ import numpy as np
 cimport numpy as cnp
 from libc.math cimport sqrt, fabs, cos, sin, INFINITY
 from dem._math cimport cross3, det3, dot3, sub3
-from dem.shapes._support cimport (ShapeRef, support_world, support_world_id, vertex_world, posed_point,
-                                  quat_to_rot, polytope_core, NPARAM, MARGIN)
+from dem.shapes._support cimport (ShapeRef, support_world, support_world_id, box_support_id, box_corners,
+                                  vertex_world, posed_point, quat_to_rot, polytope_core, BOX, NPARAM, MARGIN)
 
 cdef enum:
     GJK_MAXIT = 128
@@ -785,12 +785,13 @@ cdef int signed_distance(const ShapeRef* A, const double* Ra, const double* xa,
 
 
 cdef inline bint _inside(const double* p0, const double* p1, const double* p2, double* lam,
-                         double* v) noexcept nogil:
+                         double* v, double* u) noexcept nogil:
     """Projection of the origin on the plane of the triangle (p0, p1, p2): True, with its barycentric
-    weights and the point, if it falls strictly inside a triangle that is not thin."""
+    weights and the point, if it falls strictly inside a triangle that is not thin. u (if not NULL): the
+    point times a positive factor, without the divisions (a support direction need not wait for them)."""
     cdef double e1[3]
     cdef double e2[3]
-    cdef double d00, d01, d11, d20, d21, den, s, t
+    cdef double d00, d01, d11, d20, d21, den, ns, nt, s, t
     cdef int c
     sub3(p1, p0, e1)
     sub3(p2, p0, e2)
@@ -802,10 +803,16 @@ cdef inline bint _inside(const double* p0, const double* p1, const double* p2, d
         return False
     d20 = -dot3(p0, e1)
     d21 = -dot3(p0, e2)
-    s = (d11 * d20 - d01 * d21) / den
-    t = (d00 * d21 - d01 * d20) / den
-    if not (s > 0.0 and t > 0.0 and s + t < 1.0):
+    ns = d11 * d20 - d01 * d21             # s and t times den
+    nt = d00 * d21 - d01 * d20
+    if not (ns > 0.0 and nt > 0.0 and ns + nt < den):
         return False
+    if u != NULL:
+        for c in range(3):
+            u[c] = den * p0[c] + ns * e1[c] + nt * e2[c]
+    t = 1.0 / den
+    s = ns * t
+    t = nt * t
     lam[0] = 1.0 - s - t
     lam[1] = s
     lam[2] = t
@@ -834,7 +841,7 @@ cdef int _warm_triangle(const ShapeRef* A, const double* Ra, const double* xa,
     cdef double vn[3]
     cdef double vv, vw, maxw2
     cdef int c, ia, ib, it, e, i, j, k
-    if not _inside(S.w[0], S.w[1], S.w[2], S.lam, v):
+    if not _inside(S.w[0], S.w[1], S.w[2], S.lam, v, NULL):
         return -1
     maxw2 = 0.0
     for k in range(3):
@@ -870,7 +877,7 @@ cdef int _warm_triangle(const ShapeRef* A, const double* Ra, const double* xa,
                 n[2] = -n[2]
             if -dot3(n, w) <= 0.0:      # the origin does not see this face
                 continue
-            if _inside(S.w[i], S.w[j], w, lam, vn):
+            if _inside(S.w[i], S.w[j], w, lam, vn, NULL):
                 break
         else:
             _set_point(S, 3, w, a, b, ia, ib)
@@ -890,14 +897,12 @@ cdef int _warm_triangle(const ShapeRef* A, const double* Ra, const double* xa,
 
 
 # Warm start of a lasting contact: the last separated simplex, kept in NFEAT values per pair. Between two
-# polytopes, its vertex pairs: feat[k] = ia * FEAT_BASE + ib + 1 (exact in a double; 0: none). Otherwise (a
+# polytopes, its vertex pairs: feat[2k] = ia + 1, feat[2k + 1] = ib + 1 (0: none). Otherwise (a
 # curved or rounded body), its points in the two body frames: feat[6k:6k+3] on A, feat[6k+3:6k+6] on B
 # (unscaled shape coordinates; both zero: none). Re-posed, these are points of the bodies (body-fixed) near
 # the new closest points: a lasting contact starts from a simplex that already surrounds them. (Support
 # directions would not do: on a flat cap or along a cylinder's side the support jumps with the direction.)
 WARM_START_VALUES = NFEAT               # (for Python callers of contact_batch)
-cdef double FEAT_BASE = 2097152.0
-cdef double FEAT_INV = 1.0 / 2097152.0
 
 
 cdef inline void _body_point(const double* R, const double* x, const double* p, double* q) noexcept nogil:
@@ -915,16 +920,14 @@ cdef bint _load_features(const ShapeRef* A, const double* Ra, const double* xa,
                          const double* feat, bint polytopes, Simplex* S) noexcept nogil:
     """The stored simplex at the current poses; False if there is none."""
     cdef int k, ia, ib
-    cdef double code
     cdef const double* q
     S.n = 0
     for k in range(3):
         if polytopes:
-            if feat[k] <= 0.0:
+            if feat[2 * k] <= 0.0:
                 break
-            code = feat[k] - 1.0
-            ia = <int>(code * FEAT_INV)
-            ib = <int>(code - ia * FEAT_BASE)
+            ia = <int>feat[2 * k] - 1
+            ib = <int>feat[2 * k + 1] - 1
             if not vertex_world(A, Ra, xa, ia, S.a[k]) or not vertex_world(B, Rb, xb, ib, S.b[k]):
                 S.n = 0
                 return False
@@ -942,18 +945,73 @@ cdef bint _load_features(const ShapeRef* A, const double* Ra, const double* xa,
     return S.n > 0
 
 
+cdef int _warm_corners(const ShapeRef* A, const double* Ra, const double* xa,
+                       const ShapeRef* B, const double* Rb, const double* xb, double tol, double sep,
+                       const double* feat, Simplex* S, double* v, double* pa, double* pb) noexcept nogil:
+    """The usual call of a lasting contact between two boxes posed as corners (ShapeRef.corners), three
+    stored vertex pairs, in straight-line code: the stored triangle, its closest point, one support query.
+    Returns GJK_SEPARATED (converged on the stored triangle: v = pa - pb as gjk_distance, the features stay
+    as they are), -1 (S holds the stored triangle: _warm_triangle goes on), or -2 (no usable features)."""
+    cdef double w[3]
+    cdef double d[3]
+    cdef double vv, vw, maxw2
+    cdef const double* ca
+    cdef const double* cb
+    cdef int k, c, ia, ib
+    for k in range(3):
+        ia = <int>feat[2 * k] - 1
+        ib = <int>feat[2 * k + 1] - 1
+        if <unsigned int>ia > 7 or <unsigned int>ib > 7:         # (none, or made for other shapes)
+            S.n = 0
+            return -2
+        ca = &A.corners[3 * ia]
+        cb = &B.corners[3 * ib]
+        for c in range(3):
+            S.a[k][c] = ca[c]
+            S.b[k][c] = cb[c]
+            S.w[k][c] = ca[c] - cb[c]
+        S.fa[k] = ia
+        S.fb[k] = ib
+    S.n = 3
+    if not _inside(S.w[0], S.w[1], S.w[2], S.lam, v, d):
+        return -1
+    maxw2 = dot3(S.w[0], S.w[0])
+    for k in range(1, 3):
+        vv = dot3(S.w[k], S.w[k])
+        if vv > maxw2:
+            maxw2 = vv
+    vv = dot3(v, v)
+    if vv <= EPS_ZERO * maxw2:
+        return -1
+    cb = &B.corners[3 * box_support_id(Rb, d)]       # supports along v (B) and -v (A): d is v scaled
+    for c in range(3):
+        d[c] = -d[c]
+    ca = &A.corners[3 * box_support_id(Ra, d)]
+    for c in range(3):
+        w[c] = ca[c] - cb[c]
+    vw = dot3(v, w)
+    if vv - vw <= tol * vv or (vw > 0.0 and vw * vw >= sep * sep * vv):   # as _warm_triangle
+        _witness(S, pa, pb)
+        sub3(pa, pb, v)
+        return GJK_SEPARATED
+    return -1
+
+
 cdef void _store_features(const Simplex* S, bint separated, bint polytopes, const double* Ra, const double* xa,
                           const double* Rb, const double* xb, double* feat) noexcept nogil:
     cdef int k
     if polytopes:
-        feat[0] = feat[1] = feat[2] = 0.0
+        for k in range(6):
+            feat[k] = 0.0
         if not separated or S.n > 3:
             return
         for k in range(S.n):
             if S.fa[k] < 0 or S.fb[k] < 0:
-                feat[0] = feat[1] = feat[2] = 0.0
-                return
-            feat[k] = S.fa[k] * FEAT_BASE + S.fb[k] + 1.0
+                break
+        else:
+            for k in range(S.n):
+                feat[2 * k] = S.fa[k] + 1.0
+                feat[2 * k + 1] = S.fb[k] + 1.0
         return
     for k in range(NFEAT):
         feat[k] = 0.0
@@ -979,8 +1037,15 @@ cdef int crust_contact(const ShapeRef* Acore, double crust_a, const double* Ra, 
     cdef int c, code
     cdef bint polytopes = (polytope_core(Acore.kind, Acore.params[MARGIN])
                            and polytope_core(Bcore.kind, Bcore.params[MARGIN]))
-    cdef bint warm = feat != NULL and _load_features(Acore, Ra, xa, Bcore, Rb, xb, feat, polytopes, &S)
+    cdef bint warm
     cdef int r = -1
+    if polytopes and feat != NULL and feat[4] > 0.0 and Acore.corners != NULL and Bcore.corners != NULL:
+        r = _warm_corners(Acore, Ra, xa, Bcore, Rb, xb, tol, csum, feat, &S, guess, pa, pb)
+        if r == GJK_SEPARATED:
+            feat = NULL                  # (kept as they are)
+        warm = r == -1
+    else:
+        warm = feat != NULL and _load_features(Acore, Ra, xa, Bcore, Rb, xb, feat, polytopes, &S)
     if warm and S.n == 3:
         r = _warm_triangle(Acore, Ra, xa, Bcore, Rb, xb, tol, csum, &S, guess, pa, pb)
     if r < 0:
@@ -1029,6 +1094,7 @@ cdef inline void _set_ref(ShapeRef* r, int kind, const double[::1] params, const
     r.params = &params[0]
     r.nverts = <int>verts.shape[0]
     r.verts = &verts[0, 0] if verts.shape[0] > 0 else NULL
+    r.corners = NULL
     if kind == 6 and r.nverts == 0:
         raise ValueError("a polyhedron needs vertices")
 
@@ -1053,6 +1119,7 @@ cdef inline void _row_ref(ShapeRef* r, int s, const int[::1] kind, const double[
     r.params = &params[s, 0]
     r.nverts = nv[s]
     r.verts = &verts[voff[s], 0]
+    r.corners = NULL
 
 
 def pair_distance(int ka, const double[::1] params_a, const double[:, ::1] verts_a,
@@ -1097,15 +1164,18 @@ def contact_batch(const int[::1] core_kind, const double[:, ::1] core_params, co
                   const int[::1] shape, const double[:, ::1] x, const double[:, ::1] quat,
                   const int[::1] pi, const int[::1] pj, double tol,
                   double[:, ::1] guess, int[::1] code, double[::1] overlap, double[:, ::1] normal,
-                  double[:, ::1] point, double[:, ::1] feat=None):
+                  double[:, ::1] point, double[:, ::1] feat=None, bint corners=False):
     """Crust contacts of the pairs (pi[k], pj[k]) of particles with shapes shape[i] from a ShapeTable's core
     arrays: the nogil batch loop a pair style runs. guess[k] (and feat[k], NFEAT values, if given) warm-start
-    pair k. Returns the contact count."""
+    pair k. corners: box cores posed as their corners, as pair convex/gjk poses them. Returns the contact
+    count."""
     cdef Py_ssize_t k, m = pi.shape[0]
     cdef int i, j, si, sj, nc = 0
     cdef ShapeRef A, B
     cdef double Ra[9]
     cdef double Rb[9]
+    cdef double ca[24]
+    cdef double cb[24]
     cdef double* fp = NULL
     if feat is not None and (feat.shape[0] < m or feat.shape[1] != NFEAT):
         raise ValueError(f"feat must have shape (len(pi), {NFEAT})")
@@ -1119,6 +1189,12 @@ def contact_batch(const int[::1] core_kind, const double[:, ::1] core_params, co
             _row_ref(&B, sj, core_kind, core_params, core_voff, core_nv, verts)
             quat_to_rot(&quat[i, 0], Ra)
             quat_to_rot(&quat[j, 0], Rb)
+            if corners and A.kind == BOX and A.params[MARGIN] == 0.0:
+                box_corners(Ra, &x[i, 0], A.params, ca)
+                A.corners = ca
+            if corners and B.kind == BOX and B.params[MARGIN] == 0.0:
+                box_corners(Rb, &x[j, 0], B.params, cb)
+                B.corners = cb
             if feat is not None:
                 fp = &feat[k, 0]
             code[k] = crust_contact(&A, crust[si], Ra, &x[i, 0], &B, crust[sj], Rb, &x[j, 0], tol,

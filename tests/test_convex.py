@@ -13,6 +13,7 @@ import pytest
 
 import dem
 from dem import geometry, shape_command
+from dem_convex._pair_convex import FEAT_SLOT, TAG_SLOT
 from dem.errors import DemError
 from dem.shapes import cube, Cylinder
 from dem.thermo import quat_to_matrix
@@ -234,7 +235,7 @@ def test_curved_warm_start_belongs_to_the_pair_shapes():
     sim = two_bodies("cylinder 0.001 0.002", "0.0024 0.0006 0.0003")
     sim.run(10)
     h = sim.pair.history.values
-    k = np.flatnonzero(np.any(h[:, 6:-1] != 0, axis=1))
+    k = np.flatnonzero(np.any(h[:, FEAT_SLOT:] != 0, axis=1))
     assert len(k) == 1 and sim.pair.ncontacts == 1
     d = sim.atom.data
 
@@ -252,9 +253,9 @@ def test_curved_warm_start_belongs_to_the_pair_shapes():
     for slot, i in ((0, 0), (3, 1)):
         body = quat_to_matrix(d["quat"][i:i + 1])[0].T @ (mid - d["x"][i])
         for p in range(3):
-            fooled[k, 6 + 6 * p + slot:9 + 6 * p + slot] = body
+            fooled[k, FEAT_SLOT + 6 * p + slot:FEAT_SLOT + 3 + 6 * p + slot] = body
     other = fooled.copy()
-    other[k, -1] += 1.0                      # made for other shapes
+    other[k, TAG_SLOT] += 1.0                # made for other shapes
     f_cold = forces(cold)
     assert np.linalg.norm(forces(fooled)[0]) > 2.0 * np.linalg.norm(f_cold[0])
     assert np.array_equal(forces(other), f_cold)
@@ -268,13 +269,13 @@ def test_touching_pair_skips_the_pretest_and_still_separates():
     sim = two_bodies("cube 0.002", "0.00268 0.0004 0.0003")     # overlap ~1 % of the edge
     p, d = sim.pair, sim.atom.data
     sim.run(2)
-    assert p.ncontacts == 1 and p.nsep == 0 and p.history.values[0, -1] < 0
+    assert p.ncontacts == 1 and p.nsep == 0 and p.history.values[0, TAG_SLOT] < 0
     touching = d["x"][1].copy()
     d["x"][1] = touching + [0.0004, 0.0, 0.0]       # cores apart, bounding spheres still overlapping
     d["v"][:] = 0.0
     sim.run(1)
     assert p.ncontacts == 0 and p.nsep == 0 and not d["f"][:2].any()
-    assert p.history.values[0, -1] > 0
+    assert p.history.values[0, TAG_SLOT] > 0
     sim.run(1)
     assert p.nsep == 2              # pre-tested again and rejected (the run's setup pass, then its step)
     d["x"][1] = touching
@@ -451,7 +452,7 @@ thermo 0
 
     def held():      # pair and wall contacts and a curved pair's simplex: the history that crosses the restart
         return (ref.pair.ncontacts, ref.modify.find("w").ncontacts,
-                np.count_nonzero(np.any(ref.pair.history.values[:, 9:-1] != 0, axis=1)))
+                np.count_nonzero(np.any(ref.pair.history.values[:, FEAT_SLOT + 3:] != 0, axis=1)))
 
     ref.run(14000)
     while ref.update.ntimestep < 30000 and not (held()[0] >= 3 and held()[1] >= 3 and held()[2] >= 1):
@@ -524,10 +525,14 @@ def test_pair_move_bound_covers_every_point():
     radius = srad[0] * rng.uniform(0.5, 2.0, n)        # scaled bodies
     shape = np.zeros(n, dtype=np.int32)
     is_sphere = np.zeros(1, dtype=np.int32)
-    rot, xprev, move = np.zeros((n, 9)), np.zeros((n, 3)), np.zeros(n)
-    _pair_convex.poses(x0, q0, radius, shape, is_sphere, srad, n, rot, xprev, move, True)
+    core_kind, core_params = np.ones(1, dtype=np.int32), np.zeros((1, 8))     # a box core
+    core_params[0, :3] = half
+    rot, corners, xprev, move = np.zeros((n, 9)), np.zeros((n, 24)), np.zeros((n, 3)), np.zeros(n)
+    _pair_convex.poses(x0, q0, radius, shape, is_sphere, core_kind, core_params, srad, n, rot, corners, xprev,
+                       move, True)
     r0 = rot.copy()
-    _pair_convex.poses(x1, q1, radius, shape, is_sphere, srad, n, rot, xprev, move, False)
+    _pair_convex.poses(x1, q1, radius, shape, is_sphere, core_kind, core_params, srad, n, rot, corners, xprev,
+                       move, False)
     corners = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * half
     p0 = np.einsum("nij,kj->nki", r0.reshape(n, 3, 3), corners) + x0[:, None, :]
     p1 = np.einsum("nij,kj->nki", rot.reshape(n, 3, 3), corners) + x1[:, None, :]

@@ -456,7 +456,9 @@ def test_simplex_warm_start():
     """The pair kernels store the last GJK simplex (feat) and restart GJK from it at the next poses: the
     vertex pairs between two polytopes, the points in the two body frames otherwise. After a small motion
     (one step of a bed) and after a large one (the stored points are no longer the closest), the contact is
-    the cold start's to the GJK tolerance."""
+    the cold start's to the GJK tolerance. Boxes posed as their corners (pair convex/gjk; a lasting box contact
+    has a straight-line path of its own) give the shape's points: the same contacts cold, bit for bit, and
+    the same warm to the tolerance."""
     rng = np.random.default_rng(29)
     shapes = [Box(0.5, 0.7, 0.9), cube(0.8), tetrahedron(1.0), pinacoid(1.0, 0.8, 0.6),
               Polyhedron(rng.normal(size=(30, 3)) * [0.6, 0.5, 0.4]), Cylinder(0.4, 1.0), Sphere(0.5),
@@ -470,19 +472,21 @@ def test_simplex_warm_start():
     m = len(pi)
     tol = 1e-10
 
-    def batch(x, quat, guess, feat):
+    def batch(x, quat, guess, feat, corners=False):
         out = [np.zeros(m, np.int32), np.zeros(m), np.zeros((m, 3)), np.zeros((m, 3))]
         _gjk.contact_batch(table.core_kind, table.core_params, table.core_voff, table.core_nv, table.crust,
-                           table.verts, shape, x, quat, pi, pj, tol, guess, *out, feat)
+                           table.verts, shape, x, quat, pi, pj, tol, guess, *out, feat, corners)
         return out
 
     feat = np.zeros((m, _gjk.WARM_START_VALUES))
     guess = np.zeros((m, 3))
     code0 = batch(x, quat, guess, feat)[0]
+    feat_c, guess_c = np.zeros_like(feat), np.zeros_like(guess)
+    assert np.array_equal(batch(x, quat, guess_c, feat_c, corners=True)[0], code0)
     poly = np.isin(table.core_kind, (1, 6))[shape]       # boxes and polyhedra (kind codes, shapes/base.py)
     both = poly[pi] & poly[pj]
     stored = np.any(feat != 0, axis=1)
-    assert np.all(feat[both][:, 3:] == 0)                 # polytopes: vertex codes in the first 3 values
+    assert np.all(feat[both][:, 6:] == 0)                 # polytopes: vertex pairs in the first 6 values
     assert np.count_nonzero(stored & (code0 == 0) & both) > 100
     assert np.count_nonzero(stored & (code0 == 0) & ~both) > 100
     # the stored body-frame points are points of the cores: within the bodies' bounding spheres
@@ -497,6 +501,11 @@ def test_simplex_warm_start():
         quat2 /= np.linalg.norm(quat2, axis=1)[:, None]
         warm = batch(x2, quat2, guess.copy(), feat.copy())
         cold = batch(x2, quat2, np.zeros((m, 3)), None)
+        for a, b in zip(batch(x2, quat2, np.zeros((m, 3)), None, corners=True), cold):
+            assert np.array_equal(a, b)
+        warm_c = batch(x2, quat2, guess_c.copy(), feat_c.copy(), corners=True)
+        for a, b in zip(warm_c[1:], warm[1:]):
+            np.testing.assert_allclose(a[both], b[both], rtol=1e-8, atol=1e-9)
         assert np.array_equal(warm[0] > 0, cold[0] > 0)
         hit = cold[0] > 0
         assert np.count_nonzero(hit & both) > 10 and np.count_nonzero(hit & ~both) > 10
@@ -507,6 +516,57 @@ def test_simplex_warm_start():
         np.testing.assert_allclose(warm[2][hp], cold[2][hp], atol=1e-9)
         np.testing.assert_allclose(warm[3][hp], cold[3][hp], atol=1e-9)
         np.testing.assert_allclose(warm[2][hit], cold[2][hit], atol=1e-4)
+
+
+def test_lasting_box_contacts_from_corners():
+    """Boxes posed as their corners (as pair convex/gjk poses them) take a straight-line path when a contact
+    lasts: the stored triangle of vertex pairs, its closest point, one support query. Box pairs touching
+    face-face, edge-face and corner-face, moved by one bed step (1e-5 of the size) or by more (the touching
+    corner changes): the contacts are the cold start's without corners, to the GJK tolerance."""
+    rng = np.random.default_rng(41)
+    shapes = [Box(0.5, 0.7, 0.9), cube(0.8)]
+    table = ShapeTable(shapes)
+    m = 300
+    shape = rng.integers(2, size=2 * m).astype(np.int32)
+    x = np.zeros((2 * m, 3))
+    quat = np.array([rquat(rng) for _ in range(2 * m)])
+    for k in range(m):                         # every third pair face-face: B's faces parallel to A's
+        if k % 3 == 0:
+            quat[2 * k + 1] = quat[2 * k]
+        u = rng.normal(size=3)
+        u /= np.linalg.norm(u)
+        # B along u, overlapping A by the larger crust (bisection): the rounded bodies touch (a rounded
+        # corner lies at most 0.74 crust inside the box), the cores stay apart (by the smaller crust)
+        depth = table.crust[shape[2 * k:2 * k + 2]].max()
+        lo, hi = 0.0, 4.0
+        for _ in range(50):
+            t = 0.5 * (lo + hi)
+            d = G.distance(shapes[shape[2 * k]], x[2 * k], quat[2 * k], shapes[shape[2 * k + 1]], t * u,
+                           quat[2 * k + 1])[0]
+            lo, hi = (t, hi) if d < -depth else (lo, t)
+        x[2 * k + 1] = hi * u
+    pi, pj = np.arange(0, 2 * m, 2, dtype=np.int32), np.arange(1, 2 * m, 2, dtype=np.int32)
+
+    def batch(x, quat, guess, feat, corners):
+        out = [np.zeros(m, np.int32), np.zeros(m), np.zeros((m, 3)), np.zeros((m, 3))]
+        _gjk.contact_batch(table.core_kind, table.core_params, table.core_voff, table.core_nv, table.crust,
+                           table.verts, shape, x, quat, pi, pj, 1e-10, guess, *out, feat, corners)
+        return out
+
+    feat, guess = np.zeros((m, _gjk.WARM_START_VALUES)), np.zeros((m, 3))
+    assert np.all(batch(x, quat, guess, feat, True)[0] == 1)          # all touching, cores apart
+    assert np.count_nonzero(feat[:, 4]) > m // 2                       # most hold a triangle
+    for scale in (1e-5, 1e-5, 1e-3, 1e-2):
+        x = x + rng.normal(scale=scale, size=x.shape)
+        quat = quat + rng.normal(scale=scale, size=quat.shape)
+        quat /= np.linalg.norm(quat, axis=1)[:, None]
+        warm = batch(x, quat, guess, feat, True)
+        cold = batch(x, quat, np.zeros((m, 3)), None, False)
+        assert np.array_equal(warm[0], cold[0]) and np.count_nonzero(cold[0]) > m // 2
+        hit = cold[0] > 0
+        np.testing.assert_allclose(warm[1][hit], cold[1][hit], rtol=1e-8, atol=1e-12)
+        np.testing.assert_allclose(warm[2][hit], cold[2][hit], atol=1e-9)
+        np.testing.assert_allclose(warm[3][hit], cold[3][hit], atol=1e-9)
 
 
 # ---------------------------------------------------------------- degenerate configurations

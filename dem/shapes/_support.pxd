@@ -23,6 +23,7 @@ cdef struct ShapeRef:
     int nverts
     const double* params
     const double* verts      # this shape's first vertex (x, y, z, x, y, z, ...), NULL if none
+    const double* corners    # a box posed once per step: its 8 world corners (corner id k at 3k), or NULL
 
 cdef void support(int kind, const double* params, const double* verts, int nverts,
                   const double* d, double* out) noexcept nogil
@@ -45,6 +46,42 @@ cdef inline void posed_point(const double* R, const double* x, const double* p, 
     out[2] = R[6] * p[0] + R[7] * p[1] + R[8] * p[2] + x[2]
 
 
+cdef inline void box_corners(const double* R, const double* x, const double* h, double* out) noexcept nogil:
+    """The 8 corners of the box of half-sides h posed at (R, x), corner k at out[3k] (bit j of k set: +h_j),
+    rounded as posed_point rounds R p + x (((R0 p0 + R1 p1) + R2 p2) + x; sign flips are exact), so that
+    GJK's vertex pairs get the same points whether they come from here or from the shape."""
+    cdef double a, b, c, p, m
+    cdef int d
+    for d in range(3):
+        a = R[3 * d] * h[0]
+        b = R[3 * d + 1] * h[1]
+        c = R[3 * d + 2] * h[2]
+        p = a + b                  # s0 = s1: +-p; s0 = -s1: +-m
+        m = a - b
+        out[d] = x[d] - (p + c)
+        out[3 + d] = x[d] + (m - c)
+        out[6 + d] = x[d] - (m + c)
+        out[9 + d] = x[d] + (p - c)
+        out[12 + d] = x[d] - (p - c)
+        out[15 + d] = x[d] + (m + c)
+        out[18 + d] = x[d] - (m - c)
+        out[21 + d] = x[d] + (p + c)
+
+
+cdef inline int _corner_bits(const double* db) noexcept nogil:
+    """The box corner that is farthest along the body-frame direction db (bit k set: +h_k)."""
+    return (0 if signbit(db[0]) else 1) | (0 if signbit(db[1]) else 2) | (0 if signbit(db[2]) else 4)
+
+
+cdef inline int box_support_id(const double* R, const double* d) noexcept nogil:
+    """support_world_id of a box posed at R, for the world direction d: its corner index."""
+    cdef double db[3]
+    db[0] = R[0] * d[0] + R[3] * d[1] + R[6] * d[2]
+    db[1] = R[1] * d[0] + R[4] * d[1] + R[7] * d[2]
+    db[2] = R[2] * d[0] + R[5] * d[1] + R[8] * d[2]
+    return _corner_bits(db)
+
+
 cdef inline int support_world_id(const ShapeRef* sh, const double* R, const double* x, const double* d,
                           double* out) noexcept nogil:
     """support_world, returning the vertex index of the support point on a polytope (a box without margin:
@@ -62,7 +99,12 @@ cdef inline int support_world_id(const ShapeRef* sh, const double* R, const doub
     elif sh.kind == BOX:
         # copysign(h, db) from the corner bits: gcc spills copysign's operand through memory (a stalled
         # store-to-load forward in GJK's hottest loop)
-        best_k = (0 if signbit(db[0]) else 1) | (0 if signbit(db[1]) else 2) | (0 if signbit(db[2]) else 4)
+        best_k = _corner_bits(db)
+        if sh.corners != NULL:
+            out[0] = sh.corners[3 * best_k]
+            out[1] = sh.corners[3 * best_k + 1]
+            out[2] = sh.corners[3 * best_k + 2]
+            return best_k
         p[0] = sh.params[0] * <double>((best_k & 1) * 2 - 1)
         p[1] = sh.params[1] * <double>((best_k & 2) - 1)
         p[2] = sh.params[2] * <double>(((best_k & 4) >> 1) - 1)
@@ -87,6 +129,11 @@ cdef inline bint vertex_world(const ShapeRef* sh, const double* R, const double*
     if vid < 0 or sh.params[MARGIN] != 0.0:
         return False
     if sh.kind == BOX and vid < 8:
+        if sh.corners != NULL:
+            out[0] = sh.corners[3 * vid]
+            out[1] = sh.corners[3 * vid + 1]
+            out[2] = sh.corners[3 * vid + 2]
+            return True
         p[0] = sh.params[0] * <double>((vid & 1) * 2 - 1)      # branchless (random bits)
         p[1] = sh.params[1] * <double>((vid & 2) - 1)
         p[2] = sh.params[2] * <double>(((vid & 4) >> 1) - 1)
@@ -183,6 +230,7 @@ cdef inline void pose_shape(ShapeRef* S, int kind, const double* params, int nve
     S.params = params
     S.nverts = nverts
     S.verts = verts
+    S.corners = NULL
     quat_to_rot(quat, R)
     for k in range(9):
         R[k] *= scale

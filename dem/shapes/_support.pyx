@@ -155,6 +155,9 @@ cdef void support_world(const ShapeRef* sh, const double* R, const double* x, co
     """World-frame support point of a shape posed at (R, x): R s(R^T d) + x."""
     cdef double db[3]
     cdef double p[3]
+    if sh.corners != NULL:        # the same points as GJK's vertex pairs
+        support_world_id(sh, R, x, d, out)
+        return
     db[0] = R[0] * d[0] + R[3] * d[1] + R[6] * d[2]
     db[1] = R[1] * d[0] + R[4] * d[1] + R[7] * d[2]
     db[2] = R[2] * d[0] + R[5] * d[1] + R[8] * d[2]

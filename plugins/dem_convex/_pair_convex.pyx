@@ -17,12 +17,26 @@ touched at its last GJK call (such a pair goes to GJK without the pre-test)."""
 cimport numpy as cnp
 from libc.math cimport sqrt, fabs
 from dem_contact.law cimport forget, hooke, rolling_torque
-from dem.shapes._support cimport ShapeRef, quat_to_rot, support_world, polytope_core, MARGIN
+from dem.shapes._support cimport ShapeRef, quat_to_rot, support_world, polytope_core, box_corners, BOX, MARGIN
 from dem._gjk cimport crust_contact, CONTACT_NONE, CONTACT_CRUST, NFEAT
 
 ctypedef cnp.int64_t i64
 
-HISTORY = 7 + NFEAT                   # history values per pair
+cdef extern from *:
+    """
+    #if defined(__GNUC__)
+    #define DEM_PREFETCH(p) __builtin_prefetch(p)
+    #else
+    #define DEM_PREFETCH(p) ((void)(p))
+    #endif
+    """
+    void prefetch "DEM_PREFETCH"(const void* p) noexcept nogil
+
+cdef enum:
+    TAG = 6                           # history slots (module docstring): xi 0-2, axis 3-5, tag, simplex
+    FEAT = 7
+HISTORY = FEAT + NFEAT                # history values per pair
+TAG_SLOT, FEAT_SLOT = TAG, FEAT       # (for Python: tests, tools)
 
 cdef double MARGIN_SAFETY = 1e-12     # margins are kept this much (relative) short of the round-off
 cdef double SQRT_HALF = 0.7071067811865476   # ||R' - R||_2 = ||R' - R||_F / sqrt(2) between two rotations
@@ -34,8 +48,10 @@ POINT_PARAMS[:] = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
 cdef inline void _pose(int i, int s, const double[::1] radius, const int[::1] is_sphere,
                        const int[::1] core_kind, const double[:, ::1] core_params, const i64[::1] core_voff,
                        const int[::1] core_nv, const double[::1] crust, const double[:, ::1] verts,
-                       const double[::1] srad, ShapeRef* ref, double* c) noexcept nogil:
-    """Core and crust of particle i (shape s); its scaled rotation is rot[i]."""
+                       const double[::1] srad, const double[:, ::1] corners, ShapeRef* ref,
+                       double* c) noexcept nogil:
+    """Core and crust of particle i (shape s); its scaled rotation is rot[i], its corners (a box) corners[i]."""
+    ref.corners = NULL
     if s < 0 or is_sphere[s]:
         ref.kind = 0          # SPHERE of radius 0: a point
         ref.params = POINT_PARAMS
@@ -47,6 +63,8 @@ cdef inline void _pose(int i, int s, const double[::1] radius, const int[::1] is
     ref.params = &core_params[s, 0]
     ref.nverts = core_nv[s]
     ref.verts = &verts[core_voff[s], 0]
+    if ref.kind == BOX and ref.params[MARGIN] == 0.0:     # posed by poses
+        ref.corners = &corners[i, 0]
     c[0] = crust[s] * radius[i] / srad[s]
 
 
@@ -87,10 +105,12 @@ cdef inline double _extent(const ShapeRef* ref, const double* R, const double* x
 
 
 def poses(const double[:, ::1] x, const double[:, ::1] quat, const double[::1] radius, const int[::1] shape,
-          const int[::1] is_sphere, const double[::1] srad, int nall, double[:, ::1] rot, double[:, ::1] xprev,
+          const int[::1] is_sphere, const int[::1] core_kind, const double[:, ::1] core_params,
+          const double[::1] srad, int nall, double[:, ::1] rot, double[:, ::1] corners, double[:, ::1] xprev,
           double[::1] move, bint reset):
-    """rot[i] = scale_i R(quat_i), row-major, for the shaped particles (identity for spheres): computed
-    once per step, used by every pair of the particle. move[i] bounds how far any point of
+    """rot[i] = scale_i R(quat_i), row-major, for the shaped particles (identity for spheres), and the 8
+    world corners of box cores (corners[i], see box_corners): computed once per step, used by every pair
+    of the particle (a lasting contact between boxes re-reads a few corners at every call). move[i] bounds how far any point of
     particle i's core moved since the last call (zero on reset): |x - xprev| + ||R - R_prev||_2 r_shape (a
     rotation moves a point p by |(R - R_prev) p| <= ||R - R_prev||_2 |p|). R_prev^T R is a rotation by some
     angle t, so the singular values of R - R_prev are 2 sin(t/2) (twice) and 0: its spectral norm is its
@@ -110,6 +130,8 @@ def poses(const double[:, ::1] x, const double[:, ::1] quat, const double[::1] r
                 quat_to_rot(&quat[i, 0], R)
                 for k in range(9):
                     R[k] *= sc
+                if core_kind[s] == BOX and core_params[s, MARGIN] == 0.0:
+                    box_corners(R, &x[i, 0], &core_params[s, 0], &corners[i, 0])
             move[i] = 0.0
             if not reset:
                 dr = 0.0
@@ -126,7 +148,8 @@ def poses(const double[:, ::1] x, const double[:, ::1] quat, const double[::1] r
 
 
 def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1] omega,
-            double[:, ::1] f, double[:, ::1] torque, const double[:, ::1] rot, const double[::1] radius,
+            double[:, ::1] f, double[:, ::1] torque, const double[:, ::1] rot,
+            const double[:, ::1] corners, const double[::1] radius,
             const double[::1] rmass, const int[::1] type_, const int[::1] shape, int nlocal,
             const i64[::1] offsets, const int[::1] neigh, const double[:, :, ::1] coeff,
             const int[::1] is_sphere, const int[::1] core_kind, const double[:, ::1] core_params,
@@ -173,7 +196,7 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
     cdef ShapeRef A, B
     cdef const double* c
     cdef double* h
-    cdef int a, na = 0
+    cdef int a, na = 0, kn, jn
     cdef double mi, m
     with nogil:
         for i in range(nlocal):          # pass 1: margins (branch-free: the outcome is unpredictable)
@@ -188,6 +211,16 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
         for a in range(na):
             i = active[a, 0]
             k = active[a, 1]
+            if a + 1 < na:       # the next pair's rows, scattered in memory: fetched while this one works
+                kn = active[a + 1, 1]
+                jn = neigh[kn]
+                prefetch(&hist[kn, 0])
+                prefetch(&hist[kn, FEAT + 2])
+                prefetch(&x[jn, 0])
+                prefetch(&rot[jn, 0])
+                prefetch(&corners[jn, 0])
+                prefetch(&corners[jn, 8])
+                prefetch(&corners[jn, 16])
             margin[k] = 0.0
             si = shape[i]
             sph_i = si < 0 or is_sphere[si] != 0
@@ -201,8 +234,8 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
             if r2 >= rsum * rsum:
                 if advance:
                     margin[k] = sqrt(r2) - rsum - MARGIN_SAFETY * rsum
-                    hist[k, 6 + NFEAT] = fabs(hist[k, 6 + NFEAT])
-                    _forget_points(&hist[k, 6], si, sj, is_sphere, core_kind, core_params)
+                    hist[k, TAG] = fabs(hist[k, TAG])
+                    _forget_points(&hist[k, FEAT], si, sj, is_sphere, core_kind, core_params)
                     if use_xi:
                         forget(&hist[k, 0])
                 continue
@@ -217,9 +250,9 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                     p[d] = x[i, d] - (radius[i] - 0.5 * delta) * n[d]
             else:
                 _pose(i, si, radius, is_sphere, core_kind, core_params, core_voff, core_nv, crust, verts,
-                      srad, &A, &ca)
+                      srad, corners, &A, &ca)
                 _pose(j, sj, radius, is_sphere, core_kind, core_params, core_voff, core_nv, crust, verts,
-                      srad, &B, &cb)
+                      srad, corners, &B, &cb)
                 for d in range(3):
                     g[d] = hist[k, 3 + d]
                 gn = g[0] * g[0] + g[1] * g[1] + g[2] * g[2]     # a unit axis (stored so: no square root)
@@ -239,7 +272,7 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                 # separating-axis pre-test along u (from j to i): gap = min_A u.a - max_B u.b; not for a pair
                 # that touched at its last call (tag stored negative): it would almost never reject it
                 gap = -1.0
-                if hist[k, 6 + NFEAT] != -tag:
+                if hist[k, TAG] != -tag:
                     for d in range(3):
                         sb[d] = -u[d]
                     gap = (u[0] * dx[0] + u[1] * dx[1] + u[2] * dx[2] - _extent(&A, &rot[i, 0], &x[i, 0], sb)
@@ -251,24 +284,24 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                         if new_axis:            # the axis stays fixed while the pair is apart
                             for d in range(3):
                                 hist[k, 3 + d] = g[d]
-                        _forget_points(&hist[k, 6], si, sj, is_sphere, core_kind, core_params)
+                        _forget_points(&hist[k, FEAT], si, sj, is_sphere, core_kind, core_params)
                         if use_xi:
                             forget(&hist[k, 0])
                     continue
                 ngjk += 1
                 if advance:
-                    if fabs(hist[k, 6 + NFEAT]) != tag:
+                    if fabs(hist[k, TAG]) != tag:
                         for d in range(NFEAT):
-                            hist[k, 6 + d] = 0.0
-                    fp = &hist[k, 6]
+                            hist[k, FEAT + d] = 0.0
+                    fp = &hist[k, FEAT]
                 else:                # a setup pass changes no history: a copy
                     for d in range(NFEAT):
-                        feat[d] = hist[k, 6 + d] if fabs(hist[k, 6 + NFEAT]) == tag else 0.0
+                        feat[d] = hist[k, FEAT + d] if fabs(hist[k, TAG]) == tag else 0.0
                     fp = &feat[0]
                 code = crust_contact(&A, ca, &rot[i, 0], &x[i, 0], &B, cb, &rot[j, 0], &x[j, 0], tol, g, fp,
                                      &delta, n, p)
                 if advance:          # warm start; a setup pass changes no history
-                    hist[k, 6 + NFEAT] = tag if code == CONTACT_NONE else -tag
+                    hist[k, TAG] = tag if code == CONTACT_NONE else -tag
                     if code == CONTACT_CRUST:
                         for d in range(3):   # n is g / |g| already
                             hist[k, 3 + d] = n[d]

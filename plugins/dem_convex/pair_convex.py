@@ -71,6 +71,7 @@ class PairConvexGJK(PairCoefficients, Pair):
         self.use_xi = False
         self.stats = np.zeros(7)
         self.rot, self.xprev, self.move = np.zeros((0, 9)), np.zeros((0, 3)), np.zeros(0)
+        self.corners = np.zeros((0, 24))
         self.margin = np.zeros(0)      # per list entry: gap left before contact (see _pair_convex.compute)
         self.seen_build = self.seen_nall = -1
         self.worst = np.zeros(2, dtype=np.int64)
@@ -107,9 +108,12 @@ class PairConvexGJK(PairCoefficients, Pair):
             if len(self.rot) < nall:
                 n = int(nall * 1.2) + 16
                 self.rot, self.xprev, self.move = np.zeros((n, 9)), np.zeros((n, 3)), np.zeros(n)
-        _pair_convex.poses(a["x"], a["quat"], a["radius"], a["shape"], t["is_sphere"], t["radius"], nall,
-                           self.rot, self.xprev, self.move, reset)
-        _pair_convex.compute(a["x"], a["v"], a["omega"], a["f"], a["torque"], self.rot, a["radius"],
+                self.corners = np.zeros((n, 24))
+        _pair_convex.poses(a["x"], a["quat"], a["radius"], a["shape"], t["is_sphere"], t["core_kind"],
+                           t["core_params"], t["radius"], nall, self.rot, self.corners, self.xprev, self.move,
+                           reset)
+        _pair_convex.compute(a["x"], a["v"], a["omega"], a["f"], a["torque"], self.rot, self.corners,
+                             a["radius"],
                              a["rmass"], a["type"], a["shape"], sim.atom.nlocal, nb.offsets, nb.neigh,
                              self.table, t["is_sphere"], t["core_kind"], t["core_params"], t["core_voff"],
                              t["core_nv"], t["crust"], t["verts"], t["radius"], h.values, self.use_xi,
