@@ -1035,16 +1035,16 @@ cdef int crust_contact(const ShapeRef* Acore, double crust_a, const double* Ra, 
     cdef double pb[3]
     cdef double d, depth, h, csum = crust_a + crust_b
     cdef int c, code
-    cdef bint polytopes = (polytope_core(Acore.kind, Acore.params[MARGIN])
-                           and polytope_core(Bcore.kind, Bcore.params[MARGIN]))
+    cdef bint polytopes = True
     cdef bint warm
     cdef int r = -1
-    if polytopes and feat != NULL and feat[4] > 0.0 and Acore.corners != NULL and Bcore.corners != NULL:
+    if feat != NULL and Acore.corners != NULL and Bcore.corners != NULL and feat[4] > 0.0:   # two box cores
         r = _warm_corners(Acore, Ra, xa, Bcore, Rb, xb, tol, csum, feat, &S, guess, pa, pb)
         if r == GJK_SEPARATED:
             feat = NULL                  # (kept as they are)
         warm = r == -1
     else:
+        polytopes = polytope_core(Acore.kind, Acore.params[MARGIN]) and polytope_core(Bcore.kind, Bcore.params[MARGIN])
         warm = feat != NULL and _load_features(Acore, Ra, xa, Bcore, Rb, xb, feat, polytopes, &S)
     if warm and S.n == 3:
         r = _warm_triangle(Acore, Ra, xa, Bcore, Rb, xb, tol, csum, &S, guess, pa, pb)

@@ -47,8 +47,8 @@ POINT_PARAMS[:] = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
 
 cdef inline void _pose(int i, int s, const double[::1] radius, const int[::1] is_sphere,
                        const int[::1] core_kind, const double[:, ::1] core_params, const i64[::1] core_voff,
-                       const int[::1] core_nv, const double[::1] crust, const double[:, ::1] verts,
-                       const double[::1] srad, const double[:, ::1] corners, ShapeRef* ref,
+                       const int[::1] core_nv, const double[::1] crust_rel, const double[:, ::1] verts,
+                       const double[:, ::1] corners, ShapeRef* ref,
                        double* c) noexcept nogil:
     """Core and crust of particle i (shape s); its scaled rotation is rot[i], its corners (a box) corners[i]."""
     ref.corners = NULL
@@ -65,7 +65,7 @@ cdef inline void _pose(int i, int s, const double[::1] radius, const int[::1] is
     ref.verts = &verts[core_voff[s], 0]
     if ref.kind == BOX and ref.params[MARGIN] == 0.0:     # posed by poses
         ref.corners = &corners[i, 0]
-    c[0] = crust[s] * radius[i] / srad[s]
+    c[0] = crust_rel[s] * radius[i]
 
 
 cdef inline bint _polytope(int s, const int[::1] is_sphere, const int[::1] core_kind,
@@ -153,8 +153,8 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
             const double[::1] rmass, const int[::1] type_, const int[::1] shape, int nlocal,
             const i64[::1] offsets, const int[::1] neigh, const double[:, :, ::1] coeff,
             const int[::1] is_sphere, const int[::1] core_kind, const double[:, ::1] core_params,
-            const i64[::1] core_voff, const int[::1] core_nv, const double[::1] crust,
-            const double[:, ::1] verts, const double[::1] srad,
+            const i64[::1] core_voff, const int[::1] core_nv, const double[::1] crust_rel,
+            const double[:, ::1] verts,
             double[:, ::1] hist, bint use_xi, double tol, double dt, bint advance,
             double[::1] margin, const double[::1] move, int[:, ::1] active, double[::1] stats, i64[::1] worst):
     """Adds contact forces and torques to f and torque (owned and ghost rows). stats receives
@@ -189,7 +189,7 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
     cdef double tag
     cdef double u[3]
     cdef double sb[3]
-    cdef double r2, r, rsum, delta, meff, ca, cb, energy = 0.0, ov, maxov = 0.0, rmin, gn
+    cdef double r2, r, rsum, delta, meff, ca, cb, energy = 0.0, maxov = 0.0, rmin, gn
     cdef int nsep = 0, nskip = 0
     cdef double gap
     cdef bint sph_i, sph_j, new_axis
@@ -249,10 +249,10 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                 for d in range(3):
                     p[d] = x[i, d] - (radius[i] - 0.5 * delta) * n[d]
             else:
-                _pose(i, si, radius, is_sphere, core_kind, core_params, core_voff, core_nv, crust, verts,
-                      srad, corners, &A, &ca)
-                _pose(j, sj, radius, is_sphere, core_kind, core_params, core_voff, core_nv, crust, verts,
-                      srad, corners, &B, &cb)
+                _pose(i, si, radius, is_sphere, core_kind, core_params, core_voff, core_nv, crust_rel, verts,
+                      corners, &A, &ca)
+                _pose(j, sj, radius, is_sphere, core_kind, core_params, core_voff, core_nv, crust_rel, verts,
+                      corners, &B, &cb)
                 for d in range(3):
                     g[d] = hist[k, 3 + d]
                 gn = g[0] * g[0] + g[1] * g[1] + g[2] * g[2]     # a unit axis (stored so: no square root)
@@ -318,9 +318,8 @@ def compute(const double[:, ::1] x, const double[:, ::1] v, const double[:, ::1]
                     nepa += 1
             ncont += 1
             rmin = radius[i] if radius[i] < radius[j] else radius[j]
-            ov = delta / (2.0 * rmin)
-            if ov > maxov:
-                maxov = ov
+            if delta > maxov * (2.0 * rmin):     # (a division only for a new largest overlap)
+                maxov = delta / (2.0 * rmin)
                 worst[0] = i
                 worst[1] = j
             meff = rmass[i] * rmass[j] / (rmass[i] + rmass[j])

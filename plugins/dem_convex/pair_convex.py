@@ -92,6 +92,8 @@ class PairConvexGJK(PairCoefficients, Pair):
             sim.warning("shaped particles are integrated without fix nve/shape: their rotation is that of "
                         "a sphere (wrong for non-spherical bodies)")
         self.shape_arrays = shape_command.kernel_arrays(sim)
+        t = self.shape_arrays
+        self.crust_rel = t["crust"] / t["radius"] if len(t["radius"]) else t["crust"]   # crust per unit radius
 
     def compute(self, advance=True):
         sim = self.sim
@@ -116,7 +118,7 @@ class PairConvexGJK(PairCoefficients, Pair):
                              a["radius"],
                              a["rmass"], a["type"], a["shape"], sim.atom.nlocal, nb.offsets, nb.neigh,
                              self.table, t["is_sphere"], t["core_kind"], t["core_params"], t["core_voff"],
-                             t["core_nv"], t["crust"], t["verts"], t["radius"], h.values, self.use_xi,
+                             t["core_nv"], self.crust_rel, t["verts"], h.values, self.use_xi,
                              self.tol, sim.update.dt, advance, self.margin, self.move, self.active, self.stats,
                              self.worst)
         self.ncontacts = int(self.stats[0])
