@@ -788,7 +788,8 @@ cdef inline bint _inside(const double* p0, const double* p1, const double* p2, d
                          double* v, double* u) noexcept nogil:
     """Projection of the origin on the plane of the triangle (p0, p1, p2): True, with its barycentric
     weights and the point, if it falls strictly inside a triangle that is not thin. u (if not NULL): the
-    point times a positive factor, without the divisions (a support direction need not wait for them)."""
+    point times a positive factor, without the divisions (a support direction need not wait for them),
+    and u[3] the longer edge's squared length (the triangle's scale)."""
     cdef double e1[3]
     cdef double e2[3]
     cdef double d00, d01, d11, d20, d21, den, ns, nt, s, t
@@ -810,6 +811,7 @@ cdef inline bint _inside(const double* p0, const double* p1, const double* p2, d
     if u != NULL:
         for c in range(3):
             u[c] = den * p0[c] + ns * e1[c] + nt * e2[c]
+        u[3] = d00 if d00 > d11 else d11
     t = 1.0 / den
     s = ns * t
     t = nt * t
@@ -953,8 +955,8 @@ cdef int _warm_corners(const ShapeRef* A, const double* Ra, const double* xa,
     Returns GJK_SEPARATED (converged on the stored triangle: v = pa - pb as gjk_distance, the features stay
     as they are), -1 (S holds the stored triangle: _warm_triangle goes on), or -2 (no usable features)."""
     cdef double w[3]
-    cdef double d[3]
-    cdef double vv, vw, maxw2
+    cdef double d[4]
+    cdef double vv, vw
     cdef const double* ca
     cdef const double* cb
     cdef int k, c, ia, ib
@@ -975,13 +977,8 @@ cdef int _warm_corners(const ShapeRef* A, const double* Ra, const double* xa,
     S.n = 3
     if not _inside(S.w[0], S.w[1], S.w[2], S.lam, v, d):
         return -1
-    maxw2 = dot3(S.w[0], S.w[0])
-    for k in range(1, 3):
-        vv = dot3(S.w[k], S.w[k])
-        if vv > maxw2:
-            maxw2 = vv
     vv = dot3(v, v)
-    if vv <= EPS_ZERO * maxw2:
+    if vv <= EPS_ZERO * d[3]:        # the origin on the triangle (to round-off): the general path decides
         return -1
     cb = &B.corners[3 * box_support_id(Rb, d)]       # supports along v (B) and -v (A): d is v scaled
     for c in range(3):

@@ -27,9 +27,24 @@ cdef struct ShapeRef:
 
 cdef void support(int kind, const double* params, const double* verts, int nverts,
                   const double* d, double* out) noexcept nogil
-cdef void quat_to_rot(const double* q, double* R) noexcept nogil
 cdef void support_world(const ShapeRef* s, const double* R, const double* x, const double* d,
                         double* out) noexcept nogil
+
+
+cdef inline void quat_to_rot(const double* q, double* R) noexcept nogil:
+    """Row-major rotation matrix (body -> world) of the quaternion (w, x, y, z); not normalised inputs are
+    tolerated (the quaternion is scaled by 1/|q|^2 implicitly)."""
+    cdef double w = q[0], x = q[1], y = q[2], z = q[3]
+    cdef double s = 2.0 / (w * w + x * x + y * y + z * z)
+    R[0] = 1.0 - s * (y * y + z * z)
+    R[1] = s * (x * y - w * z)
+    R[2] = s * (x * z + w * y)
+    R[3] = s * (x * y + w * z)
+    R[4] = 1.0 - s * (x * x + z * z)
+    R[5] = s * (y * z - w * x)
+    R[6] = s * (x * z - w * y)
+    R[7] = s * (y * z + w * x)
+    R[8] = 1.0 - s * (x * x + y * y)
 
 
 cdef inline bint polytope_core(int kind, double margin) noexcept nogil:
