@@ -10,10 +10,15 @@ direction), i.e. the support of the body scaled by s; its crust is s times the s
 (shape -1, or a table sphere) is a point core with a crust equal to its radius: exact.
 
 History per pair (values[k, 0:HISTORY]): the tangential spring xi (3, when ks > 0), then the GJK warm
-start: the direction of the last core separation pa - pb (3, unit; also the pre-test axis), the last
-simplex (NFEAT, see dem/_gjk.pyx: vertex pairs of polytopes, body-frame points otherwise) and a tag of the
+start: the direction of the last core separation pa - pb (3, unit; also the pre-test axis), a tag of the
 two shapes it was made for (1 value: a particle given another shape starts cold), negative while the pair
-touched at its last GJK call (such a pair goes to GJK without the pre-test)."""
+touched at its last GJK call (such a pair goes to GJK without the pre-test), and the last simplex (NFEAT,
+see dem/_gjk.pyx: vertex pairs of polytopes, body-frame points otherwise). A lasting contact between
+boxes reads the first 13 values only.
+
+Box cores are posed once per step as their 8 world corners (poses); GJK reads its vertex pairs from them.
+The rows of the next pair in the list are prefetched while the current one is solved: they are scattered
+in memory and the solve is short."""
 cimport numpy as cnp
 from libc.math cimport sqrt, fabs
 from dem_contact.law cimport forget, hooke, rolling_torque
