@@ -963,7 +963,7 @@ cdef int _warm_corners(const ShapeRef* A, const double* Ra, const double* xa,
     for k in range(3):
         ia = <int>feat[2 * k] - 1
         ib = <int>feat[2 * k + 1] - 1
-        if <unsigned int>ia > 7 or <unsigned int>ib > 7:         # (none, or made for other shapes)
+        if <unsigned int>ia > 7 or <unsigned int>ib > 7:      # (none, or made for other shapes)
             S.n = 0
             return -2
         ca = &A.corners[3 * ia]
@@ -1035,13 +1035,14 @@ cdef int crust_contact(const ShapeRef* Acore, double crust_a, const double* Ra, 
     cdef bint polytopes = True
     cdef bint warm
     cdef int r = -1
-    if feat != NULL and Acore.corners != NULL and Bcore.corners != NULL and feat[4] > 0.0:   # two box cores
+    if feat != NULL and Acore.corners != NULL and Bcore.corners != NULL and feat[4] > 0.0:   # two boxes
         r = _warm_corners(Acore, Ra, xa, Bcore, Rb, xb, tol, csum, feat, &S, guess, pa, pb)
         if r == GJK_SEPARATED:
             feat = NULL                  # (kept as they are)
         warm = r == -1
     else:
-        polytopes = polytope_core(Acore.kind, Acore.params[MARGIN]) and polytope_core(Bcore.kind, Bcore.params[MARGIN])
+        polytopes = (polytope_core(Acore.kind, Acore.params[MARGIN])
+                     and polytope_core(Bcore.kind, Bcore.params[MARGIN]))
         warm = feat != NULL and _load_features(Acore, Ra, xa, Bcore, Rb, xb, feat, polytopes, &S)
     if warm and S.n == 3:
         r = _warm_triangle(Acore, Ra, xa, Bcore, Rb, xb, tol, csum, &S, guess, pa, pb)

@@ -53,9 +53,9 @@ POINT_PARAMS[:] = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
 cdef inline void _pose(int i, int s, const double[::1] radius, const int[::1] is_sphere,
                        const int[::1] core_kind, const double[:, ::1] core_params, const i64[::1] core_voff,
                        const int[::1] core_nv, const double[::1] crust_rel, const double[:, ::1] verts,
-                       const double[:, ::1] corners, ShapeRef* ref,
-                       double* c) noexcept nogil:
-    """Core and crust of particle i (shape s); its scaled rotation is rot[i], its corners (a box) corners[i]."""
+                       const double[:, ::1] corners, ShapeRef* ref, double* c) noexcept nogil:
+    """Core and crust of particle i (shape s); its scaled rotation is rot[i], its corners (a box core)
+    corners[i]."""
     ref.corners = NULL
     if s < 0 or is_sphere[s]:
         ref.kind = 0          # SPHERE of radius 0: a point
@@ -115,11 +115,11 @@ def poses(const double[:, ::1] x, const double[:, ::1] quat, const double[::1] r
           double[::1] move, bint reset):
     """rot[i] = scale_i R(quat_i), row-major, for the shaped particles (identity for spheres), and the 8
     world corners of box cores (corners[i], see box_corners): computed once per step, used by every pair
-    of the particle (a lasting contact between boxes re-reads a few corners at every call). move[i] bounds how far any point of
-    particle i's core moved since the last call (zero on reset): |x - xprev| + ||R - R_prev||_2 r_shape (a
-    rotation moves a point p by |(R - R_prev) p| <= ||R - R_prev||_2 |p|). R_prev^T R is a rotation by some
-    angle t, so the singular values of R - R_prev are 2 sin(t/2) (twice) and 0: its spectral norm is its
-    Frobenius norm over sqrt(2)."""
+    of the particle (a lasting contact between boxes re-reads a few corners at every call). move[i] bounds
+    how far any point of particle i's core moved since the last call (zero on reset): |x - xprev| +
+    ||R - R_prev||_2 r_shape (a rotation moves a point p by |(R - R_prev) p| <= ||R - R_prev||_2 |p|).
+    R_prev^T R is a rotation by some angle t, so the singular values of R - R_prev are 2 sin(t/2) (twice)
+    and 0: its spectral norm is its Frobenius norm over sqrt(2)."""
     cdef int i, k, s
     cdef double sc = 1.0, dr, dx
     cdef double R[9]

@@ -93,7 +93,7 @@ class PairConvexGJK(PairCoefficients, Pair):
                         "a sphere (wrong for non-spherical bodies)")
         self.shape_arrays = shape_command.kernel_arrays(sim)
         t = self.shape_arrays
-        self.crust_rel = t["crust"] / t["radius"] if len(t["radius"]) else t["crust"]   # crust per unit radius
+        self.crust_rel = t["crust"] / t["radius"] if len(t["radius"]) else t["crust"]   # per unit radius
 
     def compute(self, advance=True):
         sim = self.sim
@@ -115,10 +115,9 @@ class PairConvexGJK(PairCoefficients, Pair):
                            t["core_params"], t["radius"], nall, self.rot, self.corners, self.xprev, self.move,
                            reset)
         _pair_convex.compute(a["x"], a["v"], a["omega"], a["f"], a["torque"], self.rot, self.corners,
-                             a["radius"],
-                             a["rmass"], a["type"], a["shape"], sim.atom.nlocal, nb.offsets, nb.neigh,
-                             self.table, t["is_sphere"], t["core_kind"], t["core_params"], t["core_voff"],
-                             t["core_nv"], self.crust_rel, t["verts"], h.values, self.use_xi,
+                             a["radius"], a["rmass"], a["type"], a["shape"], sim.atom.nlocal, nb.offsets,
+                             nb.neigh, self.table, t["is_sphere"], t["core_kind"], t["core_params"],
+                             t["core_voff"], t["core_nv"], self.crust_rel, t["verts"], h.values, self.use_xi,
                              self.tol, sim.update.dt, advance, self.margin, self.move, self.active, self.stats,
                              self.worst)
         self.ncontacts = int(self.stats[0])
