@@ -27,7 +27,8 @@ cimport numpy as cnp
 from libc.math cimport sqrt, fabs, cos, sin, INFINITY
 from dem._math cimport cross3, det3, dot3, sub3
 from dem.shapes._support cimport (ShapeRef, support_world, support_world_id, box_support_id, box_corners,
-                                  vertex_world, posed_point, quat_to_rot, polytope_core, BOX, NPARAM, MARGIN)
+                                  corner_box, vertex_world, posed_point, quat_to_rot, polytope_core, NPARAM,
+                                  MARGIN)
 
 cdef enum:
     GJK_MAXIT = 128
@@ -1187,10 +1188,10 @@ def contact_batch(const int[::1] core_kind, const double[:, ::1] core_params, co
             _row_ref(&B, sj, core_kind, core_params, core_voff, core_nv, verts)
             quat_to_rot(&quat[i, 0], Ra)
             quat_to_rot(&quat[j, 0], Rb)
-            if corners and A.kind == BOX and A.params[MARGIN] == 0.0:
+            if corners and corner_box(A.kind, A.params[MARGIN]):
                 box_corners(Ra, &x[i, 0], A.params, ca)
                 A.corners = ca
-            if corners and B.kind == BOX and B.params[MARGIN] == 0.0:
+            if corners and corner_box(B.kind, B.params[MARGIN]):
                 box_corners(Rb, &x[j, 0], B.params, cb)
                 B.corners = cb
             if feat is not None:

@@ -61,6 +61,11 @@ cdef inline void posed_point(const double* R, const double* x, const double* p, 
     out[2] = R[6] * p[0] + R[7] * p[1] + R[8] * p[2] + x[2]
 
 
+cdef inline bint corner_box(int kind, double margin) noexcept nogil:
+    """A box core without margin: the pair style poses it once per step as its corners (box_corners)."""
+    return kind == BOX and margin == 0.0
+
+
 cdef inline void box_corners(const double* R, const double* x, const double* h, double* out) noexcept nogil:
     """The 8 corners of the box of half-sides h posed at (R, x), corner k at out[3k] (bit j of k set: +h_j),
     rounded as posed_point rounds R p + x (((R0 p0 + R1 p1) + R2 p2) + x; sign flips are exact), so that

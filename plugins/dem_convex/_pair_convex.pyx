@@ -22,7 +22,8 @@ in memory and the solve is short."""
 cimport numpy as cnp
 from libc.math cimport sqrt, fabs
 from dem_contact.law cimport forget, hooke, rolling_torque
-from dem.shapes._support cimport ShapeRef, quat_to_rot, support_world, polytope_core, box_corners, BOX, MARGIN
+from dem.shapes._support cimport (ShapeRef, quat_to_rot, support_world, polytope_core, box_corners, corner_box,
+                                  MARGIN)
 from dem._gjk cimport crust_contact, CONTACT_NONE, CONTACT_CRUST, NFEAT
 
 ctypedef cnp.int64_t i64
@@ -68,7 +69,7 @@ cdef inline void _pose(int i, int s, const double[::1] radius, const int[::1] is
     ref.params = &core_params[s, 0]
     ref.nverts = core_nv[s]
     ref.verts = &verts[core_voff[s], 0]
-    if ref.kind == BOX and ref.params[MARGIN] == 0.0:     # posed by poses
+    if corner_box(ref.kind, ref.params[MARGIN]):     # posed by poses
         ref.corners = &corners[i, 0]
     c[0] = crust_rel[s] * radius[i]
 
@@ -135,7 +136,7 @@ def poses(const double[:, ::1] x, const double[:, ::1] quat, const double[::1] r
                 quat_to_rot(&quat[i, 0], R)
                 for k in range(9):
                     R[k] *= sc
-                if core_kind[s] == BOX and core_params[s, MARGIN] == 0.0:
+                if corner_box(core_kind[s], core_params[s, MARGIN]):
                     box_corners(R, &x[i, 0], &core_params[s, 0], &corners[i, 0])
             move[i] = 0.0
             if not reset:

@@ -93,7 +93,7 @@ class PairConvexGJK(PairCoefficients, Pair):
                         "a sphere (wrong for non-spherical bodies)")
         self.shape_arrays = shape_command.kernel_arrays(sim)
         t = self.shape_arrays
-        self.crust_rel = t["crust"] / t["radius"] if len(t["radius"]) else t["crust"]   # per unit radius
+        self.crust_rel = t["crust"] / t["radius"]       # crust per unit bounding radius
 
     def compute(self, advance=True):
         sim = self.sim
