@@ -4,7 +4,7 @@ solve the same problem), for cube-cube, cylinder-cylinder and 20-vertex polyhedr
 
     python benchmarks/gjk_vs_coal.py [--pairs 2000] [--rounds 11]
 
-Our side is timed from the Cython batch loop ``dem._gjk.contact_batch`` (nogil, one call for all pairs):
+Our side is timed from the Cython batch loop ``dem.contact._gjk.contact_batch`` (nogil, one call for all pairs):
 that is the path a pair style takes. Coal has no batch API in Python, so its side is a Python loop over
 ``coal.ComputeCollision`` functors with prebuilt transforms; its per-call Python overhead is measured on
 a trivial query (two far-apart spheres, answered in closed form) and reported so it can be taken off.
@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 
-from dem import _gjk
+from dem.contact import _gjk
 from dem import geometry as G
 from dem.shapes import Cylinder, Polyhedron, ShapeTable, cube
 from dem.shapes.polyhedron import hull_mesh
@@ -80,8 +80,7 @@ def time_ours(table, shape, x, quat, pi, pj, reps, tol):
     t0 = time.perf_counter()
     for _ in range(reps):
         guess[:] = 0.0                      # cold start, as Coal
-        _gjk.contact_batch(table.core_kind, table.core_params, table.core_voff, table.core_nv, table.crust,
-                           table.verts, shape, x, quat, pi, pj, tol, guess, code, ov, n, p)
+        _gjk.contact_batch(table.view(), shape, x, quat, pi, pj, tol, guess, code, ov, n, p)
     return (time.perf_counter() - t0) / (reps * m), code
 
 

@@ -1,4 +1,4 @@
-"""Pairwise geometry of posed convex shapes (Python entry points to the nogil kernels in dem/_gjk.pyx).
+"""Pairwise geometry of posed convex shapes (Python entry points to the nogil kernels in dem/contact/_gjk.pyx).
 
 Poses: ``x`` is the centre of mass (3-vector), ``q`` a unit quaternion (w, x, y, z) rotating the body frame
 into the world. Shapes are dem.shapes objects. Per-pair Python calls are for tests, tools and setup only;
@@ -10,12 +10,12 @@ pair styles call ``crust_contact`` / ``signed_distance`` from Cython (see ``cont
 """
 import numpy as np
 
-from . import _gjk
+from .contact import _gjk
 
 __all__ = ["distance", "contact", "rotation", "DEFAULT_TOL"]
 
 DEFAULT_TOL = 1e-10   # relative accuracy of GJK distances (duality gap) and EPA depths
-CONTACT_NONE, CONTACT_CRUST, CONTACT_EPA, CONTACT_FALLBACK = 0, 1, 2, 3
+CONTACT_NONE, CONTACT_CRUST, CONTACT_EPA, CONTACT_FALLBACK = (int(c) for c in _gjk.ContactCode)
 
 
 def _vec(x, n):

@@ -28,6 +28,7 @@ from .errors import DemError, did_you_mean
 from .shapes import (Box, Cone, Cylinder, Ellipsoid, Polyhedron, ShapeTable, Sphere, Superquadric, cube,
                      pinacoid, tetrahedron)
 from .shapes.base import KIND_NAMES, SPHERE
+from .shapes.table import EMPTY
 
 
 # ----- the table ------------------------------------------------------------------------------------
@@ -41,7 +42,6 @@ class SimShapes(ShapeTable):
         self.entries = entries
         self.names = [n for n, _, _ in entries]
         self.definitions = [list(w) for _, _, w in entries]
-        self.is_sphere = self.kind == SPHERE
         self._meshes = {}
 
     def added(self, name, shape, words):
@@ -66,29 +66,6 @@ class SimShapes(ShapeTable):
             m = self._meshes[idx] = (np.asarray(V, float), np.asarray(F, np.int64))
         return m
 
-    def kernel_arrays(self):
-        """The arrays the contact kernels take (core for GJK, body for walls), contiguous."""
-        a = self.arrays()
-        a["radius"] = self.radius
-        a["is_sphere"] = self.is_sphere.astype(np.int32)
-        return {k: np.ascontiguousarray(v) for k, v in a.items()}
-
-
-_EMPTY = None
-
-
-def empty_kernel_arrays():
-    """Kernel arrays of an empty table (for runs without shapes: the kernels never read them)."""
-    global _EMPTY
-    if _EMPTY is None:
-        from .shapes.base import NPARAM
-        _EMPTY = {"kind": np.zeros(1, np.int32), "params": np.zeros((1, NPARAM)), "voff": np.zeros(1, np.int64),
-                  "nv": np.zeros(1, np.int32), "core_kind": np.zeros(1, np.int32),
-                  "core_params": np.zeros((1, NPARAM)), "core_voff": np.zeros(1, np.int64),
-                  "core_nv": np.zeros(1, np.int32), "crust": np.zeros(1), "verts": np.zeros((1, 3)),
-                  "radius": np.ones(1), "is_sphere": np.ones(1, np.int32)}
-    return _EMPTY
-
 
 def table(sim):
     """sim.shapes (None when no shape was defined)."""
@@ -108,7 +85,14 @@ def kernel_arrays(sim):
         raise DemError(f"particles have shape index {top} but only {nrows} shape(s) are defined",
                        hint="define the shapes (shape NAME KIND ...) in the same order before read_restart "
                             "or read_data")
-    return t.kernel_arrays() if nrows else empty_kernel_arrays()
+    return t.kernel_arrays() if nrows else EMPTY.kernel_arrays()
+
+
+def shape_view(sim):
+    """The shape table as the kernels take it (dem.shapes._table.ShapeView), checked as kernel_arrays."""
+    t = table(sim)
+    kernel_arrays(sim)
+    return t.view() if t is not None and len(t) else EMPTY.view()
 
 
 def shape_index(sim, name):

@@ -523,16 +523,30 @@ def test_pair_move_bound_covers_every_point():
     x0 = rng.normal(size=(n, 3))
     x1 = x0 + rng.normal(size=(n, 3)) * 10.0 ** rng.uniform(-12, -2, (n, 1))
     radius = srad[0] * rng.uniform(0.5, 2.0, n)        # scaled bodies
-    shape = np.zeros(n, dtype=np.int32)
-    is_sphere = np.zeros(1, dtype=np.int32)
-    core_kind, core_params = np.ones(1, dtype=np.int32), np.zeros((1, 8))     # a box core
+    from types import SimpleNamespace
+    from dem._particles import ParticleView
+    from dem.shapes._table import ShapeView
+    core_params = np.zeros((1, 8))                      # a box core
     core_params[0, :3] = half
-    rot, corners, xprev, move = np.zeros((n, 9)), np.zeros((n, 24)), np.zeros((n, 3)), np.zeros(n)
-    _pair_convex.poses(x0, q0, radius, shape, is_sphere, core_kind, core_params, srad, n, rot, corners, xprev,
-                       move, True)
-    r0 = rot.copy()
-    _pair_convex.poses(x1, q1, radius, shape, is_sphere, core_kind, core_params, srad, n, rot, corners, xprev,
-                       move, False)
+    one = {"kind": np.ones(1, np.int32), "params": core_params, "voff": np.zeros(1, np.int64),
+           "nv": np.zeros(1, np.int32), "core_kind": np.ones(1, np.int32), "core_params": core_params,
+           "core_voff": np.zeros(1, np.int64), "core_nv": np.zeros(1, np.int32), "crust": np.zeros(1),
+           "crust_rel": np.zeros(1), "radius": srad, "is_sphere": np.zeros(1, np.int32), "verts": np.zeros((1, 3))}
+    table = ShapeView(one)
+    work = _pair_convex.ConvexWork()
+    work.fit(n, 0)
+
+    def particles(x, q):
+        data = {"x": x, "quat": q, "radius": radius, "shape": np.zeros(n, np.int32)}
+        for k in ("v", "omega", "f", "torque"):
+            data[k] = np.zeros((n, 3))
+        data.update(rmass=np.ones(n), type=np.ones(n, np.int32), mask=np.ones(n, np.int32))
+        return ParticleView(SimpleNamespace(data=data, nlocal=n, nall=n))
+
+    _pair_convex.poses(particles(x0, q0), table, work, True)
+    r0 = work.rot[:n].copy()
+    _pair_convex.poses(particles(x1, q1), table, work, False)
+    rot, move = work.rot[:n], work.move[:n]
     corners = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * half
     p0 = np.einsum("nij,kj->nki", r0.reshape(n, 3, 3), corners) + x0[:, None, :]
     p1 = np.einsum("nij,kj->nki", rot.reshape(n, 3, 3), corners) + x1[:, None, :]

@@ -13,7 +13,7 @@ import pytest
 from scipy.optimize import minimize
 
 from dem import geometry as G
-from dem import _gjk
+from dem.contact import _gjk
 from dem.shapes import (Box, Cone, Cylinder, Ellipsoid, Polyhedron, ShapeTable, Sphere, Superquadric, cube,
                         pinacoid, tetrahedron)
 from dem.shapes.polyhedron import hull_mesh
@@ -436,8 +436,7 @@ def test_warm_start_and_batch():
     m = len(pi)
     guess = np.zeros((m, 3))
     out = [np.zeros(m, np.int32), np.zeros(m), np.zeros((m, 3)), np.zeros((m, 3))]
-    nc = _gjk.contact_batch(table.core_kind, table.core_params, table.core_voff, table.core_nv, table.crust,
-                            table.verts, shape, x, quat, pi, pj, 1e-10, guess, *out)
+    nc = _gjk.contact_batch(table.view(), shape, x, quat, pi, pj, 1e-10, guess, *out)
     code, ov, nrm, pt = out
     assert nc == np.count_nonzero(code) and nc > 20
     for k in range(m):
@@ -474,8 +473,7 @@ def test_simplex_warm_start():
 
     def batch(x, quat, guess, feat, corners=False):
         out = [np.zeros(m, np.int32), np.zeros(m), np.zeros((m, 3)), np.zeros((m, 3))]
-        _gjk.contact_batch(table.core_kind, table.core_params, table.core_voff, table.core_nv, table.crust,
-                           table.verts, shape, x, quat, pi, pj, tol, guess, *out, feat, corners)
+        _gjk.contact_batch(table.view(), shape, x, quat, pi, pj, tol, guess, *out, feat, corners)
         return out
 
     feat = np.zeros((m, _gjk.WARM_START_VALUES))
@@ -549,8 +547,7 @@ def test_lasting_box_contacts_from_corners():
 
     def batch(x, quat, guess, feat, corners):
         out = [np.zeros(m, np.int32), np.zeros(m), np.zeros((m, 3)), np.zeros((m, 3))]
-        _gjk.contact_batch(table.core_kind, table.core_params, table.core_voff, table.core_nv, table.crust,
-                           table.verts, shape, x, quat, pi, pj, 1e-10, guess, *out, feat, corners)
+        _gjk.contact_batch(table.view(), shape, x, quat, pi, pj, 1e-10, guess, *out, feat, corners)
         return out
 
     feat, guess = np.zeros((m, _gjk.WARM_START_VALUES)), np.zeros((m, 3))

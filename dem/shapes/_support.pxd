@@ -3,11 +3,11 @@
 
 A shape is (kind, params[NPARAM], verts, nverts) in its body frame (centre of mass at the origin, axes
 along the principal axes). ``params[MARGIN]`` erodes any kind by a ball: support(d) - margin*d/|d|, used
-for the cores of smooth shapes (see dem/shapes/base.py). Kind codes match dem/shapes/base.py.
+for the cores of smooth shapes (see dem/shapes/base.py). Kind codes are the enum Kind (Python: dem.shapes.base reads them from here).
 """
 from libc.math cimport signbit, sqrt
 
-cdef enum:
+cpdef enum Kind:           # shape kinds (the one source: dem.shapes.base reads them from _support)
     SPHERE = 0
     BOX = 1
     CYLINDER = 2
@@ -15,8 +15,11 @@ cdef enum:
     ELLIPSOID = 4
     SUPERQUADRIC = 5
     POLYHEDRON = 6
-    NPARAM = 8
+
+cdef enum:                 # a shape row's parameters (Python: _support.LAYOUT): NPARAM values,
+    NPARAM = 8             # params[MARGIN] the erosion margin
     MARGIN = 7
+    NCORNER = 24           # values of a box posed as its 8 corners (box_corners)
 
 cdef struct ShapeRef:
     int kind
@@ -165,115 +168,3 @@ cdef inline bint vertex_world(const ShapeRef* sh, const double* R, const double*
         return False
     posed_point(R, x, p, out)
     return True
-
-
-cdef inline bint candidate_point(const ShapeRef* S, const double* R, const double* x, const double* dn, int k,
-                                 double* out) noexcept nogil:
-    """k-th point of a posed body that can touch a wall lying in the direction dn (world) from it: the
-    vertices of a box or polyhedron; for a cylinder its two rim points (bottom, top) and for a cone its
-    rim point and apex, at the rim's azimuth towards dn. False past the last one (and for smooth kinds,
-    which touch at their support point only). Walls average these over the ones beyond them (`point
-    centroid`)."""
-    cdef double q[3]
-    cdef double db0, db1, nxy
-    cdef int kind = S.kind
-    if kind == BOX or kind == POLYHEDRON:
-        return vertex_world(S, R, x, k, out)
-    elif (kind == CYLINDER or kind == CONE) and k < 2:
-        db0 = R[0] * dn[0] + R[3] * dn[1] + R[6] * dn[2]
-        db1 = R[1] * dn[0] + R[4] * dn[1] + R[7] * dn[2]
-        nxy = sqrt(db0 * db0 + db1 * db1)
-        if nxy > 1e-12 * sqrt(db0 * db0 + db1 * db1 + (R[2] * dn[0] + R[5] * dn[1] + R[8] * dn[2]) ** 2):
-            q[0] = S.params[0] * db0 / nxy
-            q[1] = S.params[0] * db1 / nxy
-        else:                                               # a disc face-on: its centre
-            q[0] = 0.0
-            q[1] = 0.0
-        if kind == CYLINDER:
-            q[2] = -S.params[1] if k == 0 else S.params[1]
-        elif k == 0:
-            q[2] = S.params[1]
-        else:
-            q[0] = 0.0
-            q[1] = 0.0
-            q[2] = S.params[2]
-    else:
-        return False
-    posed_point(R, x, q, out)
-    return True
-
-
-cdef struct Surface:
-    # a wall for depth queries: the plane q[a] = pos facing side (+1 or -1), or (cylinder) the inside of
-    # the cylinder of radius r whose axis is normal to coordinates b and c and passes through centre
-    bint cylinder
-    int a, b, c
-    double side, pos, r
-    double centre[3]
-
-
-cdef inline double surface_depth(const Surface* w, const double* q) noexcept nogil:
-    """How far point q lies beyond the wall (negative: in front of it)."""
-    if w.cylinder:
-        return sqrt((q[w.b] - w.centre[w.b]) ** 2 + (q[w.c] - w.centre[w.c]) ** 2) - w.r
-    return -w.side * (q[w.a] - w.pos)
-
-
-cdef inline void centroid_beyond(const ShapeRef* S, const double* R, const double* x, const double* dn,
-                                 const Surface* w, double tol, double* c) noexcept nogil:
-    """Depth-weighted centroid of the candidate points beyond the wall, each weighted by its depth + tol
-    (tol, a round-off margin, makes points level with the deepest one count alike when the overlap starts);
-    c is left unchanged when there is none. The walls' `point centroid`."""
-    cdef double acc[3]
-    cdef double q[3]
-    cdef double wsum = 0.0, depth
-    cdef int k = 0
-    acc[0] = acc[1] = acc[2] = 0.0
-    while candidate_point(S, R, x, dn, k, q):
-        k += 1
-        depth = tol + surface_depth(w, q)
-        if depth > 0.0:
-            acc[0] += depth * q[0]
-            acc[1] += depth * q[1]
-            acc[2] += depth * q[2]
-            wsum += depth
-    if wsum > 0.0:
-        for k in range(3):
-            c[k] = acc[k] / wsum
-
-
-cdef inline void pose_shape(ShapeRef* S, int kind, const double* params, int nverts, const double* verts,
-                            const double* quat, double scale, double* R) noexcept nogil:
-    """S: a body of the shape table (row pointers); R: its rotation (body -> world) times scale."""
-    cdef int k
-    S.kind = kind
-    S.params = params
-    S.nverts = nverts
-    S.verts = verts
-    S.corners = NULL
-    quat_to_rot(quat, R)
-    for k in range(9):
-        R[k] *= scale
-
-
-cdef inline double plane_touch(const ShapeRef* S, const double* R, const double* x, const Surface* w,
-                               bint centroid, double tol, double* n, double* q) noexcept nogil:
-    """A posed body against the plane w (w.cylinder false): the overlap (<= 0: apart), n the unit normal from
-    the wall into the body and q the contact point: the deepest point (support along -n), or the centroid
-    of the candidate points beyond the wall, moved midway into the overlap."""
-    cdef double dn[3]
-    cdef double delta
-    cdef int d
-    for d in range(3):
-        n[d] = 0.0
-    n[w.a] = w.side
-    for d in range(3):
-        dn[d] = -n[d]
-    support_world(S, R, x, dn, q)
-    delta = -w.side * (q[w.a] - w.pos)
-    if delta <= 0.0:
-        return delta
-    if centroid:
-        centroid_beyond(S, R, x, dn, w, tol, q)
-    q[w.a] = w.pos - 0.5 * delta * w.side
-    return delta

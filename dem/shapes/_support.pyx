@@ -16,6 +16,8 @@ import numpy as np
 cimport numpy as cnp
 from libc.math cimport sqrt, pow, fabs, copysign, signbit
 
+LAYOUT = {"NPARAM": NPARAM, "MARGIN": MARGIN}     # the enum of _support.pxd, for Python
+
 
 cdef inline double _sgn1(double x) noexcept nogil:
     # sign with sgn(0) = +1: a zero component of d still picks a boundary point

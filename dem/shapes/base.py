@@ -33,11 +33,14 @@ import copy
 
 import numpy as np
 
-SPHERE, BOX, CYLINDER, CONE, ELLIPSOID, SUPERQUADRIC, POLYHEDRON = range(7)
+from ._support import LAYOUT, Kind, support_points
+
+# kind codes and the parameter layout: defined once, in _support.pxd (the kernels' enums)
+SPHERE, BOX, CYLINDER, CONE, ELLIPSOID, SUPERQUADRIC, POLYHEDRON = (int(k) for k in Kind)
 KIND_NAMES = {SPHERE: "sphere", BOX: "box", CYLINDER: "cylinder", CONE: "cone", ELLIPSOID: "ellipsoid",
               SUPERQUADRIC: "superquadric", POLYHEDRON: "polyhedron"}
-NPARAM = 8    # params per shape (float64), see dem/shapes/_support.pyx
-MARGIN = 7    # params[MARGIN] erodes any kind by a ball
+NPARAM = LAYOUT["NPARAM"]    # params per shape (float64)
+MARGIN = LAYOUT["MARGIN"]    # params[MARGIN] erodes any kind by a ball
 DEFAULT_CRUST_FRACTION = 0.05   # default crust = this * inradius: overlaps of a few % of the size stay on
 #                                 the GJK fast path, rounding of edges stays well below 5 % of the size
 
@@ -155,7 +158,6 @@ class Shape:
 
     def support(self, d, core=False):
         """Body-frame support point(s) for direction(s) d (n, 3) or (3,)."""
-        from ._support import support_points
         single = np.ndim(d) == 1
         d = np.ascontiguousarray(np.atleast_2d(d), dtype=float)
         kind, params, verts = (self.core_kind, self.core_params, self.core_vertices) if core else \

@@ -7,7 +7,8 @@ same ``verts``. A table built from the same shape list is bitwise identical on e
 """
 import numpy as np
 
-from .base import NPARAM
+from ._table import ShapeView
+from .base import NPARAM, SPHERE
 
 
 class ShapeTable:
@@ -39,6 +40,8 @@ class ShapeTable:
             self.crust[i], self.volume[i], self.radius[i] = s.crust, s.volume, s.bounding_radius
             self.inertia[i] = s.principal_moments
         self.verts = np.ascontiguousarray(np.vstack(blocks) if blocks else np.zeros((1, 3)))
+        self.is_sphere = self.kind == SPHERE
+        self._view = None
 
     def __len__(self):
         return len(self.shapes)
@@ -47,3 +50,26 @@ class ShapeTable:
         """The arrays the kernels take, by name."""
         return {k: getattr(self, k) for k in ("kind", "params", "voff", "nv", "core_kind", "core_params",
                                                "core_voff", "core_nv", "crust", "verts")}
+
+    def kernel_arrays(self):
+        """The arrays the contact kernels take (core for GJK, body for walls), contiguous; an empty table
+        gives one dummy row (kernels never read it: every particle is a plain sphere)."""
+        a = self.arrays()
+        a["radius"] = self.radius
+        a["crust_rel"] = a["crust"] / a["radius"]       # crust per unit bounding radius
+        a["is_sphere"] = self.is_sphere.astype(np.int32)
+        if not len(self):
+            a.update(kind=np.zeros(1, np.int32), params=np.zeros((1, NPARAM)), voff=np.zeros(1, np.int64),
+                     nv=np.zeros(1, np.int32), core_kind=np.zeros(1, np.int32), core_params=np.zeros((1, NPARAM)),
+                     core_voff=np.zeros(1, np.int64), core_nv=np.zeros(1, np.int32), crust=np.zeros(1),
+                     radius=np.ones(1), crust_rel=np.zeros(1), is_sphere=np.ones(1, np.int32))
+        return {k: np.ascontiguousarray(v) for k, v in a.items()}
+
+    def view(self):
+        """The table as kernels take it (one TableView struct, dem/shapes/_table.pxd), built once."""
+        if self._view is None:
+            self._view = ShapeView(self.kernel_arrays())
+        return self._view
+
+
+EMPTY = ShapeTable([])      # the table of a run without shapes

@@ -1,15 +1,18 @@
 """The Grains3D contact law (Part III eq. 10-16), shared by every contact geometry (spheres, walls, and
 later convex bodies, glued composites, polyhedra): coefficients, their table per type pair, and contact
-times. The force itself is computed by the inline nogil functions of `law.pxd`."""
+times. The force itself is computed by the inline nogil functions of `law.pxd`, applied at a contact
+record by `apply.pxd`."""
 import math
 
 import numpy as np
 
 from dem.errors import DemError, did_you_mean
 
-# columns of a coefficient row, in the order law.pxd reads them
-KN, BETA, MU, GAMMA_T, KS, MU_ROLL, EN = range(7)
-NCOEFF = 7
+from .law import COLUMNS
+
+# columns of a coefficient row: defined once, in law.pxd
+KN, BETA, MU, GAMMA_T, KS, MU_ROLL, EN, NCOEFF, XI_WIDTH = (
+    COLUMNS[k] for k in ("KN", "BETA", "MU", "GAMMA_T", "KS", "MU_ROLL", "EN", "NCOEFF", "XI_WIDTH"))
 KEYWORDS = {"kn": "normal stiffness (N/m)", "en": "normal restitution coefficient (0 < en <= 1)",
             "mu": "Coulomb friction coefficient", "gamma_t": "tangential dissipative coefficient (1/s)",
             "ks": "tangential spring stiffness (N/m), needs contact history",

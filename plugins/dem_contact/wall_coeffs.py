@@ -5,12 +5,12 @@ import numpy as np
 
 from dem.errors import DemError
 
-from . import EN, KN, KS, NCOEFF, contact_time, parse, row
+from . import EN, KN, KS, NCOEFF, XI_WIDTH, contact_time, parse, row
 
 
 class WallCoefficients:
     """Mixin of a wall Fix. `self.table[w, t]` is the coefficient row (law.pxd reads it) of wall w and
-    particle type t; `self.history()` the per-particle history array (3 values per wall) or a dummy."""
+    particle type t; `self.history()` the per-particle history array (XI_WIDTH values per wall) or a dummy."""
 
     def parse_law(self, words):
         what = f"fix {self.id} {self.style}"
@@ -33,7 +33,7 @@ class WallCoefficients:
                                f"take them from")
         self.use_history = bool(np.any(self.table[:, 1:, KS] > 0))
         if self.use_history:
-            sim.atom.add_field(self.history_name, (3 * nwalls,), np.float64, 0.0)
+            sim.atom.add_field(self.history_name, (XI_WIDTH * nwalls,), np.float64, 0.0)
 
     @property
     def history_name(self):

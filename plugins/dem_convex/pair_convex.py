@@ -2,6 +2,7 @@
 import numpy as np
 
 from dem import shape_command
+from dem._particles import ParticleView
 from dem.errors import DemError
 from dem.history import History
 from dem.pair import Pair
@@ -69,12 +70,8 @@ class PairConvexGJK(PairCoefficients, Pair):
         self.init_coefficients()
         self.history = None
         self.use_xi = False
-        self.stats = np.zeros(7)
-        self.rot, self.xprev, self.move = np.zeros((0, 9)), np.zeros((0, 3)), np.zeros(0)
-        self.corners = np.zeros((0, 24))
-        self.margin = np.zeros(0)      # per list entry: gap left before contact (see _pair_convex.compute)
+        self.work = _pair_convex.ConvexWork()   # poses and margins (see _pair_convex.compute)
         self.seen_build = self.seen_nall = -1
-        self.worst = np.zeros(2, dtype=np.int64)
         self.ngjk = 0
         self.nepa = 0
         self.nsep = 0
@@ -91,41 +88,29 @@ class PairConvexGJK(PairCoefficients, Pair):
         if shaped and not any(f.style == "nve/shape" for f in sim.modify.integrators):
             sim.warning("shaped particles are integrated without fix nve/shape: their rotation is that of "
                         "a sphere (wrong for non-spherical bodies)")
-        self.shape_arrays = shape_command.kernel_arrays(sim)
-        t = self.shape_arrays
-        self.crust_rel = t["crust"] / t["radius"]       # crust per unit bounding radius
+        self.shape_view = shape_command.shape_view(sim)
 
     def compute(self, advance=True):
         sim = self.sim
-        a = sim.atom.data
         nb = sim.neighbor
-        h = self.history
-        t = self.shape_arrays
+        w = self.work
         nall = sim.atom.nall
-        reset = nb.nbuilds != self.seen_build or len(self.margin) != nb.nentries or nall != self.seen_nall
+        reset = nb.nbuilds != self.seen_build or len(w.margin) != nb.nentries or nall != self.seen_nall
         if reset:
             self.seen_build, self.seen_nall = nb.nbuilds, nall
-            self.margin = np.zeros(nb.nentries)
-            self.active = np.zeros((nb.nentries, 2), dtype=np.int32)
-            if len(self.rot) < nall:
-                n = int(nall * 1.2) + 16
-                self.rot, self.xprev, self.move = np.zeros((n, 9)), np.zeros((n, 3)), np.zeros(n)
-                self.corners = np.zeros((n, 24))
-        _pair_convex.poses(a["x"], a["quat"], a["radius"], a["shape"], t["is_sphere"], t["core_kind"],
-                           t["core_params"], t["radius"], nall, self.rot, self.corners, self.xprev, self.move,
-                           reset)
-        _pair_convex.compute(a["x"], a["v"], a["omega"], a["f"], a["torque"], self.rot, self.corners,
-                             a["radius"], a["rmass"], a["type"], a["shape"], sim.atom.nlocal, nb.offsets,
-                             nb.neigh, self.table, t["is_sphere"], t["core_kind"], t["core_params"],
-                             t["core_voff"], t["core_nv"], self.crust_rel, t["verts"], h.values, self.use_xi,
-                             self.tol, sim.update.dt, advance, self.margin, self.move, self.active, self.stats,
-                             self.worst)
-        self.ncontacts = int(self.stats[0])
-        self.max_overlap = float(self.stats[1])
-        self.energy = float(self.stats[2])
-        self.ngjk += int(self.stats[3])
-        self.nepa += int(self.stats[4])
-        self.nsep += int(self.stats[5])
-        self.nskip += int(self.stats[6])
+            w.fit(nall, nb.nentries)
+        view = ParticleView(sim.atom)
+        _pair_convex.poses(view, self.shape_view, w, reset)
+        _pair_convex.compute(view, nb.offsets, nb.neigh, self.table, self.shape_view, w, self.history.values,
+                             self.use_xi, self.tol, sim.update.dt, advance)
+        st = w.stats
+        self.ncontacts = int(st[0])
+        self.max_overlap = float(st[1])
+        self.energy = float(st[2])
+        self.ngjk += int(st[3])
+        self.nepa += int(st[4])
+        self.nsep += int(st[5])
+        self.nskip += int(st[6])
         if self.ncontacts:
-            self.max_overlap_tags = (int(a["tag"][self.worst[0]]), int(a["tag"][self.worst[1]]))
+            a = sim.atom.data
+            self.max_overlap_tags = (int(a["tag"][w.worst[0]]), int(a["tag"][w.worst[1]]))

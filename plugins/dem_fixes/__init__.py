@@ -1,10 +1,9 @@
-"""Plugin: fixes `gravity` and `wall/plane`."""
+"""Plugin: fix `gravity`."""
 from dem.hookspecs import hookimpl
 
 from .fix_gravity import FixGravity
-from .fix_wall_plane import FixWallPlane
 
 
 @hookimpl
 def dem_styles():
-    return [FixGravity, FixWallPlane]
+    return [FixGravity]

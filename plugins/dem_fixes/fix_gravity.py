@@ -4,7 +4,7 @@ import numpy as np
 from dem.args import Args
 from dem.fix import Fix, Stage
 
-from . import _kernels
+from . import _fix_gravity
 
 
 class FixGravity(Fix):
@@ -35,4 +35,4 @@ class FixGravity(Fix):
     def post_force(self):
         atom = self.sim.atom
         a = atom.data
-        _kernels.gravity(a["f"], a["rmass"], a["mask"], int(self.groupbit), atom.nlocal, *self.g)
+        _fix_gravity.gravity(a["f"], a["rmass"], a["mask"], int(self.groupbit), atom.nlocal, *self.g)

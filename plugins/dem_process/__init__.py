@@ -1,6 +1,6 @@
 """Plugin: processes and their analysis, for packings and rotating drums (Part III sec 4.1, 4.2).
 
-Fixes: `insert` (random insertion without overlap), `wall/drum` (rotating cylinder), `damping/potyondy`
+Fixes: `insert` (random insertion without overlap), `damping/potyondy`
 (local non-viscous damping), `print/series` (time series of thermo keywords to a file).
 Computes: `ke`, `erotate`, `coord`, `vmean`, `porosity`, `repose`, `corotate`.
 Dump: `png` (drum cross-section pictures)."""
@@ -13,9 +13,8 @@ from .dump_png import DumpPNG
 from .fix_damping_potyondy import FixDampingPotyondy
 from .fix_insert import FixInsert
 from .fix_print_series import FixPrintSeries
-from .fix_wall_drum import FixWallDrum
 
-STYLES = [FixInsert, FixWallDrum, FixDampingPotyondy, FixPrintSeries, ComputeKE, ComputeERotate,
+STYLES = [FixInsert, FixDampingPotyondy, FixPrintSeries, ComputeKE, ComputeERotate,
           ComputeCoord, ComputeVMean, ComputePorosity, ComputeRepose, ComputeCorotate, DumpPNG]
 
 

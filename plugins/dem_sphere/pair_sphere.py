@@ -1,6 +1,7 @@
 """pair_style sphere: spheres with the Grains3D contact law."""
 import numpy as np
 
+from dem._particles import ParticleView
 from dem.errors import DemError
 from dem.history import History
 from dem.pair import Pair
@@ -57,9 +58,8 @@ class PairSphere(PairCoefficients, Pair):
         nb = sim.neighbor
         h = self.history
         xi = h.values if h is not None else np.zeros((1, 3))
-        _pair_sphere.compute(a["x"], a["v"], a["omega"], a["f"], a["torque"], a["radius"], a["rmass"],
-                             a["type"], sim.atom.nlocal, nb.offsets, nb.neigh, self.table, xi,
-                             h is not None, sim.update.dt, advance, self.stats, self.worst)
+        _pair_sphere.compute(ParticleView(sim.atom), nb.offsets, nb.neigh, self.table, xi, h is not None,
+                             sim.update.dt, advance, self.stats, self.worst)
         self.ncontacts = int(self.stats[0])
         self.max_overlap = float(self.stats[1])
         self.energy = float(self.stats[2])

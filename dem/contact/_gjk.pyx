@@ -28,7 +28,8 @@ from libc.math cimport sqrt, fabs, cos, sin, INFINITY
 from dem._math cimport cross3, det3, dot3, sub3
 from dem.shapes._support cimport (ShapeRef, support_world, support_world_id, box_support_id, box_corners,
                                   corner_box, vertex_world, posed_point, quat_to_rot, polytope_core, NPARAM,
-                                  MARGIN)
+                                  MARGIN, NCORNER, POLYHEDRON)
+from dem.shapes._table cimport ShapeView, TableView, body_ref, core_ref
 
 cdef enum:
     GJK_MAXIT = 128
@@ -1094,7 +1095,7 @@ cdef inline void _set_ref(ShapeRef* r, int kind, const double[::1] params, const
     r.nverts = <int>verts.shape[0]
     r.verts = &verts[0, 0] if verts.shape[0] > 0 else NULL
     r.corners = NULL
-    if kind == 6 and r.nverts == 0:
+    if kind == POLYHEDRON and r.nverts == 0:
         raise ValueError("a polyhedron needs vertices")
 
 
@@ -1109,16 +1110,6 @@ cdef void _set_pair(ShapeRef* A, int ka, const double[::1] params_a, const doubl
     g[0] = g[1] = g[2] = 0.0
     if guess is not None:
         g[0], g[1], g[2] = guess[0], guess[1], guess[2]
-
-
-cdef inline void _row_ref(ShapeRef* r, int s, const int[::1] kind, const double[:, ::1] params,
-                          const cnp.int64_t[::1] voff, const int[::1] nv, const double[:, ::1] verts) noexcept nogil:
-    """Shape-table row s as a ShapeRef."""
-    r.kind = kind[s]
-    r.params = &params[s, 0]
-    r.nverts = nv[s]
-    r.verts = &verts[voff[s], 0]
-    r.corners = NULL
 
 
 def pair_distance(int ka, const double[::1] params_a, const double[:, ::1] verts_a,
@@ -1158,23 +1149,22 @@ def pair_contact(int ka, const double[::1] params_a, const double[:, ::1] verts_
     return r, ov, n, p
 
 
-def contact_batch(const int[::1] core_kind, const double[:, ::1] core_params, const cnp.int64_t[::1] core_voff,
-                  const int[::1] core_nv, const double[::1] crust, const double[:, ::1] verts,
-                  const int[::1] shape, const double[:, ::1] x, const double[:, ::1] quat,
-                  const int[::1] pi, const int[::1] pj, double tol,
-                  double[:, ::1] guess, int[::1] code, double[::1] overlap, double[:, ::1] normal,
-                  double[:, ::1] point, double[:, ::1] feat=None, bint corners=False):
-    """Crust contacts of the pairs (pi[k], pj[k]) of particles with shapes shape[i] from a ShapeTable's core
-    arrays: the nogil batch loop a pair style runs. guess[k] (and feat[k], NFEAT values, if given) warm-start
-    pair k. corners: box cores posed as their corners, as pair convex/gjk poses them. Returns the contact
-    count."""
+def contact_batch(ShapeView shapes, const int[::1] shape, const double[:, ::1] x, const double[:, ::1] quat,
+                  const int[::1] pi, const int[::1] pj, double tol, double[:, ::1] guess, int[::1] code,
+                  double[::1] overlap, double[:, ::1] normal, double[:, ::1] point, double[:, ::1] feat=None,
+                  bint corners=False):
+    """Crust contacts of the pairs (pi[k], pj[k]) of particles with shapes shape[i] (rows of a ShapeTable,
+    at scale 1: the cores and crusts of the table): the nogil batch loop a pair style runs. guess[k] (and
+    feat[k], NFEAT values, if given) warm-start pair k. corners: box cores posed as their corners, as pair
+    convex/gjk poses them. Returns the contact count."""
+    cdef const TableView* T = &shapes.t
     cdef Py_ssize_t k, m = pi.shape[0]
     cdef int i, j, si, sj, nc = 0
     cdef ShapeRef A, B
     cdef double Ra[9]
     cdef double Rb[9]
-    cdef double ca[24]
-    cdef double cb[24]
+    cdef double ca[NCORNER]
+    cdef double cb[NCORNER]
     cdef double* fp = NULL
     if feat is not None and (feat.shape[0] < m or feat.shape[1] != NFEAT):
         raise ValueError(f"feat must have shape (len(pi), {NFEAT})")
@@ -1184,8 +1174,8 @@ def contact_batch(const int[::1] core_kind, const double[:, ::1] core_params, co
             j = pj[k]
             si = shape[i]
             sj = shape[j]
-            _row_ref(&A, si, core_kind, core_params, core_voff, core_nv, verts)
-            _row_ref(&B, sj, core_kind, core_params, core_voff, core_nv, verts)
+            core_ref(T, si, &A)
+            core_ref(T, sj, &B)
             quat_to_rot(&quat[i, 0], Ra)
             quat_to_rot(&quat[j, 0], Rb)
             if corners and corner_box(A.kind, A.params[MARGIN]):
@@ -1196,21 +1186,21 @@ def contact_batch(const int[::1] core_kind, const double[:, ::1] core_params, co
                 B.corners = cb
             if feat is not None:
                 fp = &feat[k, 0]
-            code[k] = crust_contact(&A, crust[si], Ra, &x[i, 0], &B, crust[sj], Rb, &x[j, 0], tol,
+            code[k] = crust_contact(&A, T.crust[si], Ra, &x[i, 0], &B, T.crust[sj], Rb, &x[j, 0], tol,
                                     &guess[k, 0], fp, &overlap[k], &normal[k, 0], &point[k, 0])
             if code[k] != CONTACT_NONE:
                 nc += 1
     return nc
 
 
-def distance_batch(const int[::1] kind, const double[:, ::1] params, const cnp.int64_t[::1] voff,
-                   const int[::1] nv, const double[:, ::1] verts,
-                   const int[::1] shape, const double[:, ::1] x, const double[:, ::1] quat,
-                   const int[::1] pi, const int[::1] pj, double tol, double[:, ::1] guess,
-                   double[::1] dist, double[:, ::1] pa, double[:, ::1] pb):
-    """Signed distances of the true bodies for the pairs (pi[k], pj[k]); nogil loop. Returns 0."""
+def distance_batch(ShapeView shapes, const int[::1] shape, const double[:, ::1] x, const double[:, ::1] quat,
+                   const int[::1] pi, const int[::1] pj, double tol, double[:, ::1] guess, double[::1] dist,
+                   double[:, ::1] pa, double[:, ::1] pb):
+    """Signed distances of the true bodies (rows of a ShapeTable, scale 1) for the pairs (pi[k], pj[k]);
+    nogil loop. Returns 0."""
+    cdef const TableView* T = &shapes.t
     cdef Py_ssize_t k, m = pi.shape[0]
-    cdef int i, j, si, sj
+    cdef int i, j
     cdef ShapeRef A, B
     cdef double Ra[9]
     cdef double Rb[9]
@@ -1218,10 +1208,8 @@ def distance_batch(const int[::1] kind, const double[:, ::1] params, const cnp.i
         for k in range(m):
             i = pi[k]
             j = pj[k]
-            si = shape[i]
-            sj = shape[j]
-            _row_ref(&A, si, kind, params, voff, nv, verts)
-            _row_ref(&B, sj, kind, params, voff, nv, verts)
+            body_ref(T, shape[i], &A)
+            body_ref(T, shape[j], &B)
             quat_to_rot(&quat[i, 0], Ra)
             quat_to_rot(&quat[j, 0], Rb)
             signed_distance(&A, Ra, &x[i, 0], &B, Rb, &x[j, 0], tol, &guess[k, 0], &dist[k],

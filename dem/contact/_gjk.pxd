@@ -2,18 +2,20 @@
 """nogil GJK distance, EPA penetration and Grains3D crust contact between posed convex shapes.
 
 A posed shape is a ShapeRef (dem/shapes/_support.pxd) with a row-major rotation R (body -> world) and a
-position x (the centre of mass). Normals point from B to A. See dem/_gjk.pyx for the algorithms.
+position x (the centre of mass). Normals point from B to A. See _gjk.pyx for the algorithms.
 """
 from dem.shapes._support cimport ShapeRef
 
 cdef enum:
     GJK_SEPARATED = 0
     GJK_INTERSECT = 1
-    CONTACT_NONE = 0       # crust_contact return codes
+    NFEAT = 18             # warm-start values per pair (crust_contact's feat)
+
+cpdef enum ContactCode:    # crust_contact return codes (Python: dem.geometry)
+    CONTACT_NONE = 0
     CONTACT_CRUST = 1      # cores apart by less than crust_a + crust_b: overlap from the GJK distance
     CONTACT_EPA = 2        # cores overlap: EPA on the cores + both crusts
     CONTACT_FALLBACK = 3   # EPA failed (degenerate); overlap = crusts, normal along the centres
-    NFEAT = 18             # warm-start values per pair (crust_contact's feat)
 
 cdef struct Simplex:
     int n

@@ -4,17 +4,16 @@ import math
 import numpy as np
 
 import dem_contact
-from dem_contact.wall_coeffs import WallCoefficients
-from dem import shape_command
 from dem.args import Args
+from dem.errors import did_you_mean
 from dem.fix import Fix, Stage
 
-from . import _fix_wall_drum
+from .wall_fix import WallFix, cylinder, plane, turning
 
 RPM = 2.0 * math.pi / 60.0
 
 
-class FixWallDrum(WallCoefficients, Fix):
+class FixWallDrum(WallFix, Fix):
     """fix ID group wall/drum AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate]
         [point deepest|centroid] [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
 
@@ -103,7 +102,6 @@ class FixWallDrum(WallCoefficients, Fix):
                 law += a.words[i:i + 2]
                 i += 2
             else:
-                from dem.errors import did_you_mean
                 known = ["rpm", "omega", "ramp", "ends", "point"] + list(dem_contact.KEYWORDS)
                 raise a.error(f"unknown keyword '{key}'{did_you_mean(key, known)}")
         self.parse_law(law)
@@ -113,7 +111,6 @@ class FixWallDrum(WallCoefficients, Fix):
         old = sim.modify.find(fid)
         if old is not None and getattr(old, "style", None) == self.style:
             self.angle = old.angle   # redefined (e.g. to start rotating): the drum keeps its angle
-        self.stats = np.zeros(4)
         self.energy = 0.0          # elastic energy stored in the wall contacts (thermo pe, etotal)
         self.ncontacts = 0
         self.max_overlap = 0.0
@@ -141,31 +138,21 @@ class FixWallDrum(WallCoefficients, Fix):
     # ----- stages ---------------------------------------------------------------------------------
     def init(self):
         sim = self.sim
-        self.init_table(self.nwalls)
-        self.shape_arrays = shape_command.kernel_arrays(sim)
+        self.init_walls(self.nwalls)
         if self.ends is None and not sim.domain.periodic[self.axis]:
             sim.warning(f"fix {self.id} wall/drum: no end walls and the box is not periodic along "
                         f"{'xyz'[self.axis]}: particles can leave through the open ends")
 
-    def post_force(self):
-        self.compute(True)
-
-    def compute(self, advance):
-        sim = self.sim
-        a = sim.atom.data
-        xi = self.history()
-        t = self.shape_arrays
-        lo, hi = self.ends if self.ends else (0.0, 0.0)
-        _fix_wall_drum.drum_walls(a["x"], a["v"], a["omega"], a["f"], a["torque"], a["radius"], a["rmass"],
-                                  a["type"], a["mask"], int(self.groupbit), sim.atom.nlocal, self.axis,
-                                  self.centre, self.radius, self.omega, self.nwalls - 1, lo, hi,
-                                  self.ends_rotate, self.table, xi, self.use_history, sim.update.dt, advance,
-                                  self.stats, a["quat"], a["shape"], t["is_sphere"], t["kind"], t["params"],
-                                  t["voff"], t["nv"], t["verts"], t["radius"], self.centroid)
-        self.ncontacts = int(self.stats[0])
-        self.max_overlap = float(self.stats[1])
-        self.torque = float(self.stats[2])
-        self.energy = float(self.stats[3])
+    def surfaces(self):
+        """The drum (0) and its ends (1: LO facing +AXIS, 2: HI facing -AXIS), turning at the current rate
+        (the ends only with `ends ... rotate`); all take part in the torque about the axis."""
+        a, omega = self.axis, self.omega
+        rows = [turning(cylinder(a, self.centre, self.radius), a, self.centre, omega)]
+        if self.ends:
+            spin = omega if self.ends_rotate else 0.0
+            rows += [turning(plane(a, self.ends[0], 1.0), a, self.centre, spin),
+                     turning(plane(a, self.ends[1], -1.0), a, self.centre, spin)]
+        return np.array(rows)
 
     def end_of_step(self):
         dt = self.sim.update.dt

@@ -1,22 +1,21 @@
 """fix wall/plane"""
 import numpy as np
 
-from dem_contact.wall_coeffs import WallCoefficients
-from dem import shape_command
 from dem.errors import DemError
 from dem.fix import Fix, Stage
 
-from . import _kernels
+from .wall_fix import WallFix, plane
 
 
-class FixWallPlane(WallCoefficients, Fix):
+class FixWallPlane(WallFix, Fix):
     """fix ID group wall/plane xplane|yplane|zplane LO HI [...] [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
         [point deepest|centroid]
 
     Fixed planar walls. Each `xplane LO HI` adds a wall at x = LO facing +x and one at x = HI facing -x;
     NULL skips one (`zplane 0 NULL`: a floor only). Particles touching a wall feel the Grains3D law with
     the reduced mass m_ij = m_i (the wall is an obstacle of infinite mass) and their own tangential
-    history per wall (kept per particle: it survives rebuilds, restarts and migration).
+    history per wall (kept per particle: it survives rebuilds, restarts and migration); spheres also feel
+    the rolling resistance of `pair_style sphere` (mu_roll r_i |F_n| against their spin), as at the drum.
     Shaped particles (`shape` command) touch a wall at the deepest point of their body along the wall
     normal (support function): one contact point, lever from the centre of mass to it. `point deepest`
     (default, Grains3D) puts it at that deepest point; `point centroid` at the depth-weighted centroid of
@@ -61,36 +60,17 @@ class FixWallPlane(WallCoefficients, Fix):
             self.centroid = rest[k + 1] == "centroid"
             del rest[k:k + 2]
         args = args[:i] + rest
-        self.axis = np.array(axes, dtype=np.int32)
-        self.position = np.array(positions)
-        self.side = np.array(sides)
+        self.table_rows = np.array([plane(*w) for w in zip(axes, positions, sides)])
         self.parse_law(args[i:])
-        self.stats = np.zeros(3)
         self.ncontacts = 0
         self.max_overlap = 0.0
         self.energy = 0.0          # elastic energy stored in wall contacts (thermo pe, etotal)
 
     def init(self):
-        sim = self.sim
-        self.init_table(len(self.axis))
-        self.shape_arrays = shape_command.kernel_arrays(sim)
+        self.init_walls(len(self.table_rows))
 
-    def post_force(self):
-        self.compute(True)
-
-    def compute(self, advance):
-        sim = self.sim
-        a = sim.atom.data
-        xi = self.history()
-        t = self.shape_arrays
-        _kernels.plane_walls(a["x"], a["v"], a["omega"], a["f"], a["torque"], a["radius"], a["rmass"],
-                             a["type"], a["mask"], int(self.groupbit), sim.atom.nlocal, self.axis,
-                             self.position, self.side, self.table, xi, self.use_history, sim.update.dt,
-                             advance, self.stats, a["quat"], a["shape"], t["is_sphere"], t["kind"],
-                             t["params"], t["voff"], t["nv"], t["verts"], t["radius"], self.centroid)
-        self.ncontacts = int(self.stats[0])
-        self.max_overlap = float(self.stats[1])
-        self.energy = float(self.stats[2])
+    def surfaces(self):
+        return self.table_rows
 
     def thermo(self):
         return {"contacts": self.sim.comm.sum(self.ncontacts)}

@@ -1,0 +1,24 @@
+# cython: language_level=3
+"""The particle arrays as kernels see them: one struct of pointers (Particles) into the atom store,
+rebuilt at every kernel call (arrays grow and move: never kept across calls). Row i of a 3-vector field
+is x[3 i:3 i + 3]; ghosts follow the owned rows."""
+
+cdef struct Particles:
+    int nlocal
+    int nall
+    const double* x
+    const double* v
+    const double* omega
+    const double* quat
+    double* f
+    double* torque
+    const double* radius
+    const double* rmass
+    const int* type
+    const int* shape
+    const int* mask
+
+
+cdef class ParticleView:
+    cdef Particles p
+    cdef tuple _keep

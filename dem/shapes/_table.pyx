@@ -1,0 +1,36 @@
+# cython: language_level=3
+"""ShapeView: the shape table's arrays behind one TableView struct (see _table.pxd)."""
+import numpy as np
+
+COLUMNS = ("kind", "params", "voff", "nv", "core_kind", "core_params", "core_voff", "core_nv", "crust", "crust_rel",
+           "radius", "is_sphere", "verts")
+
+
+cdef class ShapeView:
+    """Built from the arrays of ShapeTable.kernel_arrays() (or the one-row dummy of an empty table)."""
+
+    def __cinit__(self, dict arrays):
+        a = {k: np.ascontiguousarray(arrays[k]) for k in COLUMNS}
+        cdef const int[::1] kind = a["kind"], nv = a["nv"], core_kind = a["core_kind"]
+        cdef const int[::1] core_nv = a["core_nv"], is_sphere = a["is_sphere"]
+        cdef const i64[::1] voff = a["voff"], core_voff = a["core_voff"]
+        cdef const double[:, ::1] params = a["params"], core_params = a["core_params"], verts = a["verts"]
+        cdef const double[::1] crust = a["crust"], crust_rel = a["crust_rel"], radius = a["radius"]
+        self.arrays = a
+        self.t.nrows = <int>kind.shape[0]
+        self.t.kind = &kind[0]
+        self.t.params = &params[0, 0]
+        self.t.voff = &voff[0]
+        self.t.nv = &nv[0]
+        self.t.core_kind = &core_kind[0]
+        self.t.core_params = &core_params[0, 0]
+        self.t.core_voff = &core_voff[0]
+        self.t.core_nv = &core_nv[0]
+        self.t.crust = &crust[0]
+        self.t.crust_rel = &crust_rel[0]
+        self.t.radius = &radius[0]
+        self.t.is_sphere = &is_sphere[0]
+        self.t.verts = &verts[0, 0]
+
+    def __len__(self):
+        return self.t.nrows

@@ -1,0 +1,113 @@
+# cython: language_level=3
+"""The one path from a contact record (dem/contact/record.pxd) to forces and torques, shared by every pair
+style and wall: the relative velocity of the two surfaces at the contact point, the Grains3D law
+(law.pxd) with its tangential history, the force on both bodies, the torques about both centres of mass,
+optional rolling resistance, all times the record's weight.
+
+A Body is one side of a contact. A wall is a Body with `f == NULL`: `v` is then the wall's velocity at the
+contact point and `w` its spin (for rolling resistance); it takes no force. Rolling resistance acts when
+reff > 0 (spheres: R_eff; Grains3D applies none to shaped bodies)."""
+from dem._math cimport cross3
+from dem.contact.record cimport Contact
+from dem_contact.law cimport hooke, rolling_torque
+
+
+cdef struct Body:
+    const double* x     # centre of mass (unused for a wall)
+    const double* v     # velocity of the centre (a wall: its velocity at the contact point)
+    const double* w     # angular velocity (a wall: its spin)
+    double* f           # force and torque sums, NULL for a wall
+    double* t
+
+
+cdef inline void _point_velocity(const Body* b, const double* l, double* u) noexcept nogil:
+    """u = v + w x l: the velocity of body b's material point at lever l from its centre."""
+    u[0] = b.v[0] + b.w[1] * l[2] - b.w[2] * l[1]
+    u[1] = b.v[1] + b.w[2] * l[0] - b.w[0] * l[2]
+    u[2] = b.v[2] + b.w[0] * l[1] - b.w[1] * l[0]
+
+
+cdef inline double apply_law(const double* c, const Contact* k, const Body* a, const Body* b, double meff,
+                             double reff, double* xi, double dt, bint advance, double* out) noexcept nogil:
+    """The law at contact k between a and b with reduced mass meff (a wall: a's mass) and coefficient row c.
+    Adds the force to a (minus it to b) and the torques about both centres; out receives the force on a
+    (0-2) and the rolling torque on a (3-5, zero if none). Returns the elastic energy (times the weight)."""
+    cdef double vr[3]
+    cdef double ua[3]
+    cdef double ub[3]
+    cdef double li[3]
+    cdef double lj[3]
+    cdef double ws[3]
+    cdef double fn[3]
+    cdef double ft[3]
+    cdef double lxf[3]
+    cdef double tr[3]
+    cdef double energy, s = k.weight
+    cdef const double* n = k.n
+    cdef const double* wa = a.w
+    cdef const double* wb = b.w
+    cdef bint wall = b.f == NULL
+    cdef int d
+    # relative velocity of a's surface with respect to b's at the contact point
+    if k.central:
+        if wall:
+            vr[0] = a.v[0] - k.arm_a * (wa[1] * n[2] - wa[2] * n[1]) - b.v[0]
+            vr[1] = a.v[1] - k.arm_a * (wa[2] * n[0] - wa[0] * n[2]) - b.v[1]
+            vr[2] = a.v[2] - k.arm_a * (wa[0] * n[1] - wa[1] * n[0]) - b.v[2]
+        else:
+            for d in range(3):
+                ws[d] = k.arm_a * wa[d] + k.arm_b * wb[d]
+            vr[0] = a.v[0] - b.v[0] - (ws[1] * n[2] - ws[2] * n[1])
+            vr[1] = a.v[1] - b.v[1] - (ws[2] * n[0] - ws[0] * n[2])
+            vr[2] = a.v[2] - b.v[2] - (ws[0] * n[1] - ws[1] * n[0])
+    else:
+        for d in range(3):
+            li[d] = k.p[d] - a.x[d]
+        _point_velocity(a, li, ua)
+        if wall:
+            for d in range(3):
+                ub[d] = b.v[d]
+        else:
+            for d in range(3):
+                lj[d] = k.p[d] - b.x[d]
+            _point_velocity(b, lj, ub)
+        for d in range(3):
+            vr[d] = ua[d] - ub[d]
+    energy = hooke(c, k.delta, n, vr, meff, xi, dt, advance, fn, ft)
+    if s != 1.0:
+        energy *= s
+        for d in range(3):
+            fn[d] *= s
+            ft[d] *= s
+    for d in range(3):
+        out[d] = fn[d] + ft[d]
+        a.f[d] += out[d]
+    if not wall:
+        for d in range(3):
+            b.f[d] -= out[d]
+    # torques about the centres of mass
+    if k.central:
+        # levers -arm_a n and +arm_b n: only the tangential force turns the bodies
+        cross3(n, ft, lxf)
+        for d in range(3):
+            a.t[d] -= k.arm_a * lxf[d]
+        if not wall:
+            for d in range(3):
+                b.t[d] -= k.arm_b * lxf[d]
+    else:
+        cross3(li, out, lxf)
+        for d in range(3):
+            a.t[d] += lxf[d]
+        if not wall:
+            cross3(lj, out, lxf)
+            for d in range(3):
+                b.t[d] -= lxf[d]
+    out[3] = out[4] = out[5] = 0.0
+    if reff > 0.0 and rolling_torque(c, wa, wb, fn, reff, tr):
+        for d in range(3):
+            out[3 + d] = tr[d]
+            a.t[d] += tr[d]
+        if not wall:
+            for d in range(3):
+                b.t[d] -= tr[d]
+    return energy

@@ -1,0 +1,147 @@
+# cython: language_level=3
+"""The wall kernel of every wall fix (wall/plane, wall/drum): particles of a group against a set of
+surfaces (planes and the inside of cylinders, at rest or turning; dem/contact/_surface.pxd), one contact
+per particle and surface, the shared law (dem_contact/apply.pxd) with m_ij = m_i.
+
+Spheres: analytic, the contact point midway in the overlap, levers along the normal, rolling resistance
+(mu_roll r_i |F_n| against the spin relative to the wall). Shaped particles: their true body's deepest
+point (or `centroid`), lever from the centre of mass to it, no rolling resistance (Grains3D)."""
+cimport numpy as cnp
+from libc.stdlib cimport malloc, free
+from dem._particles cimport ParticleView, Particles
+from dem.contact.record cimport Contact
+from dem.contact._surface cimport (Surface, S_CYLINDER, S_A, S_SIDE, S_POS, S_R, S_CENTRE, S_SPIN,
+                                   S_OMEGA, S_NCOL, load_surface, bound_gap, sphere_normal, plane_touch,
+                                   cylinder_touch)
+from dem.shapes._support cimport ShapeRef
+from dem.shapes._table cimport ShapeView, TableView, pose_body, round_body
+from dem_contact.apply cimport Body, apply_law
+from dem_contact.law cimport XI_WIDTH, forget
+
+ctypedef cnp.int64_t i64
+
+cdef enum:                 # what the kernel sums into stats
+    W_CONTACTS = 0
+    W_MAXOV = 1            # largest overlap / diameter
+    W_ENERGY = 2           # elastic energy of the wall contacts
+    W_TORQUE = 3           # torque of the turning surfaces on the particles about their axis
+    W_NSTAT = 4
+
+# the enums above, for Python (dem_walls.wall_fix)
+SURFACE = {"CYLINDER": S_CYLINDER, "A": S_A, "SIDE": S_SIDE, "POS": S_POS, "R": S_R, "CENTRE": S_CENTRE,
+           "SPIN": S_SPIN, "OMEGA": S_OMEGA, "NCOL": S_NCOL}
+STAT = {"CONTACTS": W_CONTACTS, "MAXOV": W_MAXOV, "ENERGY": W_ENERGY, "TORQUE": W_TORQUE, "NSTAT": W_NSTAT}
+
+cdef double ZERO[3]
+ZERO[:] = [0.0, 0.0, 0.0]
+
+
+cdef inline void _wall_motion(const Surface* w, const double* q, const double* x, double* p, double* vw,
+                              double* ww) noexcept nogil:
+    """p: q relative to the turning axis (its axial part from the particle centre x), vw the surface velocity
+    omega e x p at q, ww its spin omega e."""
+    cdef double e[3]
+    cdef int d
+    for d in range(3):
+        e[d] = 0.0
+        p[d] = q[d] - w.centre[d]
+    e[w.spin] = 1.0
+    p[w.spin] = q[w.spin] - x[w.spin]
+    vw[0] = w.omega * (e[1] * p[2] - e[2] * p[1])
+    vw[1] = w.omega * (e[2] * p[0] - e[0] * p[2])
+    vw[2] = w.omega * (e[0] * p[1] - e[1] * p[0])
+    for d in range(3):
+        ww[d] = w.omega * e[d]
+
+
+def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const double[:, :, ::1] coeff,
+          ShapeView shapes, double[:, ::1] xi, bint use_history, double dt, bint advance, bint centroid,
+          double[::1] stats):
+    """surfaces: rows of S_NCOL values (SURFACE). coeff[w, type]: the law row of surface w. xi: XI_WIDTH
+    history values per surface per particle. stats: the W_ sums (STAT)."""
+    cdef const Particles* P = &view.p
+    cdef const TableView* T = &shapes.t
+    cdef int i, w, d, s, nw = surfaces.shape[0]
+    cdef double gap, rho, energy = 0.0, torque = 0.0, ncont = 0.0, maxov = 0.0, ov
+    cdef double p[3]
+    cdef double vw[3]
+    cdef double ww[3]
+    cdef double out[6]
+    cdef double R[9]
+    cdef const double* x
+    cdef Surface* surf = <Surface*>malloc(max(nw, 1) * sizeof(Surface))
+    cdef const Surface* W
+    cdef ShapeRef S
+    cdef Contact con
+    cdef Body A, B
+    cdef bint posed, sphere
+    cdef const double* c
+    for w in range(nw):
+        load_surface(&surfaces[w, 0], &surf[w])
+    con.key = 0
+    con.weight = 1.0
+    con.arm_b = 0.0
+    B.x = NULL
+    B.f = NULL
+    B.t = NULL
+    with nogil:
+        for i in range(P.nlocal):
+            if not (P.mask[i] & groupbit):
+                continue
+            x = &P.x[3 * i]
+            s = P.shape[i]
+            sphere = round_body(T, s)
+            posed = False
+            A.x = x
+            A.v = &P.v[3 * i]
+            A.w = &P.omega[3 * i]
+            A.f = &P.f[3 * i]
+            A.t = &P.torque[3 * i]
+            for w in range(nw):
+                W = &surf[w]
+                gap = bound_gap(W, x, &rho)
+                if gap >= P.radius[i] or (sphere and not sphere_normal(W, x, rho, con.n)):
+                    if use_history and advance:
+                        forget(&xi[i, XI_WIDTH * w])
+                    continue
+                if sphere:
+                    con.central = True
+                    con.delta = P.radius[i] - gap
+                    con.arm_a = P.radius[i] - 0.5 * con.delta
+                    for d in range(3):
+                        con.p[d] = x[d] - con.arm_a * con.n[d]
+                else:
+                    if not posed:
+                        pose_body(T, s, &P.quat[4 * i], P.radius[i], &S, R)
+                        posed = True
+                    con.central = False
+                    if W.cylinder:
+                        con.delta = cylinder_touch(&S, R, x, W, centroid, 1e-9 * P.radius[i], con.n, con.p)
+                    else:
+                        con.delta = plane_touch(&S, R, x, W, centroid, 1e-9 * P.radius[i], con.n, con.p)
+                    if con.delta <= 0.0:
+                        if use_history and advance:
+                            forget(&xi[i, XI_WIDTH * w])
+                        continue
+                ncont += 1.0
+                ov = con.delta / (2.0 * P.radius[i])
+                if ov > maxov:
+                    maxov = ov
+                if W.spin >= 0:
+                    _wall_motion(W, con.p, x, p, vw, ww)
+                    B.v = vw
+                    B.w = ww
+                else:
+                    B.v = ZERO
+                    B.w = ZERO
+                c = &coeff[w, P.type[i], 0]
+                energy += apply_law(c, &con, &A, &B, P.rmass[i], P.radius[i] if sphere else 0.0,
+                                    &xi[i, XI_WIDTH * w] if use_history else NULL, dt, advance, out)
+                if W.spin >= 0:       # torque about the turning axis: e . (p x F) + e . rolling torque
+                    torque += p[(W.spin + 1) % 3] * out[(W.spin + 2) % 3] - p[(W.spin + 2) % 3] * out[(W.spin + 1) % 3]
+                    torque += out[3 + W.spin]
+    free(surf)
+    stats[W_CONTACTS] = ncont
+    stats[W_MAXOV] = maxov
+    stats[W_ENERGY] = energy
+    stats[W_TORQUE] = torque

@@ -1,0 +1,56 @@
+"""WallFix: what every wall fix shares: the law per surface and type (WallCoefficients), the shape view,
+and the call of the wall kernel on the fix's surfaces table."""
+import numpy as np
+
+from dem import shape_command
+from dem._particles import ParticleView
+from dem_contact.wall_coeffs import WallCoefficients
+
+from . import _walls
+from ._walls import STAT, SURFACE as S
+
+
+def plane(axis, position, side):
+    """A surfaces-table row: the plane x[axis] = position facing side (+1 or -1), at rest."""
+    row = np.zeros(S["NCOL"])
+    row[S["A"]], row[S["POS"]], row[S["SIDE"]], row[S["SPIN"]] = axis, position, side, -1
+    return row
+
+
+def cylinder(axis, centre, radius):
+    """A surfaces-table row: the inside of the cylinder of the given radius about axis through centre."""
+    row = np.zeros(S["NCOL"])
+    row[S["CYLINDER"]], row[S["A"]], row[S["R"]], row[S["SPIN"]] = 1.0, axis, radius, -1
+    row[S["CENTRE"]:S["CENTRE"] + 3] = centre
+    return row
+
+
+def turning(row, axis, centre, omega):
+    """The row turning at omega (rad/s) about the coordinate axis through centre."""
+    row = row.copy()
+    row[S["SPIN"]], row[S["OMEGA"]] = axis, omega
+    row[S["CENTRE"]:S["CENTRE"] + 3] = centre
+    return row
+
+
+class WallFix(WallCoefficients):
+    """Mixin of a wall Fix: `surfaces()` returns the current table (one row per surface, the same count as
+    the coefficient table's walls); `self.centroid` chooses the contact point of shaped particles."""
+    centroid = False
+
+    def init_walls(self, nwalls):
+        self.init_table(nwalls)
+        self.shape_view = shape_command.shape_view(self.sim)
+        self.stats = np.zeros(STAT["NSTAT"])
+
+    def compute(self, advance):
+        sim = self.sim
+        _walls.walls(ParticleView(sim.atom), int(self.groupbit), self.surfaces(), self.table, self.shape_view,
+                     self.history(), self.use_history, sim.update.dt, advance, self.centroid, self.stats)
+        self.ncontacts = int(self.stats[STAT["CONTACTS"]])
+        self.max_overlap = float(self.stats[STAT["MAXOV"]])
+        self.energy = float(self.stats[STAT["ENERGY"]])
+        self.torque = float(self.stats[STAT["TORQUE"]])
+
+    def post_force(self):
+        self.compute(True)
