@@ -105,10 +105,8 @@ class Sim:
 def fatal(sim, error):
     """Report a DemError on stderr/log and return the exit status."""
     text = f"ERROR: {error}"
-    if sim is not None and sim.comm.nprocs > 1:
-        return sim.comm.fatal(sim, text)     # one report, and never a hang when one rank failed alone
     if sim is not None:
-        sim.print(text, screen=False)
+        return sim.comm.fatal(sim, text)     # MPI: one report, and never a hang when one rank failed alone
     print(text, file=sys.stderr, flush=True)
     return 1
 
