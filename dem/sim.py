@@ -1,5 +1,6 @@
 """The root object (rule 1): one Sim owns comm, atom, domain, neighbor, pair, modify, update, output,
-input and registry; every style receives the sim and reaches what it needs from it."""
+input, registry, the shape table and the computes; every style receives the sim and reaches what it
+needs from it."""
 import sys
 
 import numpy as np
@@ -13,6 +14,7 @@ from .modify import Modify
 from .neighbor import Neighbor
 from .output import Output
 from .registry import default_registry
+from .shape_command import SimShapes
 from .update import Update
 
 
@@ -38,6 +40,8 @@ class Sim:
         self.neighbor = Neighbor(self)
         self.pair = None
         self.modify = Modify(self)
+        self.shapes = SimShapes()      # the shape table, empty until a `shape` command adds a row
+        self.computes = {}             # compute ID -> compute, in definition order
         self.update = Update(self)
         self.output = Output(self)
         self.input = Input(self)
