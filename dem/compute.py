@@ -62,9 +62,9 @@ class Compute:
         hit = self._cache.get(what)
         if key is not None and hit is not None and hit[0] == key:
             return hit[1]
-        if self._cache.get("run") != getattr(self.sim.update, "first_step", None) or key is None:
+        if self._cache.get("run") != self.sim.update.first_step or key is None:
             self.init()
-            self._cache["run"] = getattr(self.sim.update, "first_step", None)
+            self._cache["run"] = self.sim.update.first_step
         value = func()
         self._cache[what] = (key, value)
         return value

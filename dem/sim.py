@@ -10,6 +10,7 @@ from .comm import make_comm
 from .domain import Domain
 from .errors import DemError
 from .group import Groups
+from .input import Input
 from .modify import Modify
 from .neighbor import Neighbor
 from .output import Output
@@ -29,7 +30,6 @@ class Sim:
     """
 
     def __init__(self, screen=True, log=None, variables=(), registry=None, comm=None):
-        from .input import Input   # late: the interpreter imports command machinery
         self.registry = registry or default_registry()
         self.comm = comm or make_comm(self)
         self.screen = screen and self.comm.me == 0
