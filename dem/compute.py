@@ -10,7 +10,7 @@ one). `init()` runs before each evaluation that follows a change of run (resolve
 Values are cached per time step while a run is going on, so that several thermo columns of one vector
 cost one evaluation. Every rank calls a compute (reductions go through `sim.comm`).
 
-Computes live in `sim.computes` (an ordered dict id -> compute), created here on first use.
+Computes live in `sim.computes` (a dict id -> compute, in definition order).
 """
 import re
 
@@ -62,9 +62,9 @@ class Compute:
         hit = self._cache.get(what)
         if key is not None and hit is not None and hit[0] == key:
             return hit[1]
-        if self._cache.get("run") != getattr(self.sim.update, "first_step", None) or key is None:
+        if self._cache.get("run") != self.sim.update.first_step or key is None:
             self.init()
-            self._cache["run"] = getattr(self.sim.update, "first_step", None)
+            self._cache["run"] = self.sim.update.first_step
         value = func()
         self._cache[what] = (key, value)
         return value
@@ -95,15 +95,8 @@ class Compute:
         return (atom.data["mask"][:n] & self.groupbit) != 0
 
 
-def computes(sim):
-    table = getattr(sim, "computes", None)
-    if table is None:
-        table = sim.computes = {}
-    return table
-
-
 def find_compute(sim, cid):
-    table = computes(sim)
+    table = sim.computes
     if cid not in table:
         raise unknown("compute ID", cid, table)
     return table[cid]
@@ -130,7 +123,7 @@ class ComputeCommand(Command):
         a = self.args(words)
         a.need(3)
         cid, group, style = a[0], a[1], a[2]
-        table = computes(self.sim)
+        table = self.sim.computes
         if cid in table:
             raise a.error(f"compute ID '{cid}' already exists (uncompute it first)")
         if not re.match(r"^[A-Za-z0-9_]+$", cid):
@@ -149,7 +142,7 @@ class Uncompute(Command):
     def __call__(self, words):
         a = self.args(words)
         a.exactly(1)
-        table = computes(self.sim)
+        table = self.sim.computes
         if a[0] not in table:
             raise a.error(f"unknown compute ID '{a[0]}'{did_you_mean(a[0], table)}")
         del table[a[0]]

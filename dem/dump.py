@@ -170,8 +170,8 @@ class Dump:
         The body-frame mesh of row ``shape`` (>= 0) of ``sim.shapes`` (cached per shape), scaled by
         ``scale`` (the particle's radius over the shape's bounding radius), rotated by the unit
         quaternion ``quat`` (w, x, y, z) and translated to ``position`` (the centre of mass)."""
-        table = getattr(self.sim, "shapes", None)
-        if table is None or not hasattr(table, "mesh"):
+        table = self.sim.shapes
+        if len(table) == 0:
             return None
         from .thermo import quat_to_matrix
         verts, faces = table.mesh(int(shape))
@@ -181,20 +181,19 @@ class Dump:
     def particle_meshes(self, frame):
         """{particle index in frame: (vertices, faces)} for the shaped particles that have a mesh. Empty
         while no shape is defined (``sim.shapes``), or when shape/orientation were not gathered."""
-        table = getattr(self.sim, "shapes", None)
-        if table is None:
+        table = self.sim.shapes
+        if len(table) == 0:
             return {}
         arrays = frame.arrays
         if "shape" not in arrays or "orientation" not in arrays:
             return {}
-        bounding = getattr(table, "radius", None)
         radius = arrays.get("radius")
         meshes = {}
         for i in np.flatnonzero(arrays["shape"] >= 0):
             s = int(arrays["shape"][i])
             args = (s, arrays["position"][i], arrays["orientation"][i])
-            if bounding is not None and radius is not None:
-                args += (float(radius[i]) / float(bounding[s]),)
+            if radius is not None:
+                args += (float(radius[i]) / float(table.radius[s]),)
             mesh = self.posed_mesh(*args)
             if mesh is not None:
                 verts = np.asarray(mesh[0], dtype=np.float64).reshape(-1, 3)

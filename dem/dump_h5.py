@@ -203,14 +203,14 @@ class DumpH5(Dump):
 
     def gathered_fields(self):
         names = super().gathered_fields()
-        if self.surfaces and getattr(self.sim, "shapes", None) is not None:
+        if self.surfaces and len(self.sim.shapes):
             names += [n for n in ("id", "shape", "orientation", "radius") if n not in names]
         return names
 
     def write_shapes(self, f):
         """The shape table (see the class documentation), when it has rows not yet written."""
-        table = getattr(self.sim, "shapes", None)
-        if table is None or not hasattr(table, "names") or len(table) == self._nshapes:
+        table = self.sim.shapes
+        if len(table) == self._nshapes:
             return
         from .shapes.base import KIND_NAMES
         if "shapes" in f:
@@ -261,7 +261,7 @@ class DumpH5(Dump):
             f.attrs["version"] = VERSION
             f.attrs["dump_id"] = str(self.id)
             f.attrs["group"] = str(self.group)
-            f.attrs["units"] = str(getattr(self.sim, "units", ""))
+            f.attrs["units"] = str(self.sim.units)
             f.require_group("frames")
             self._created = True
             self._nshapes = 0

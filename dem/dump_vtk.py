@@ -133,7 +133,7 @@ class DumpVTK(Dump):
 
     def gathered_fields(self):
         names = super().gathered_fields()
-        if getattr(self.sim, "shapes", None) is not None:      # to pose the meshes of shaped particles
+        if len(self.sim.shapes):      # to pose the meshes of shaped particles
             names += [n for n in ("shape", "orientation", "radius") if n not in names]
         return names
 

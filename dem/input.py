@@ -139,7 +139,7 @@ def _usage(args, low, high, usage):
 class Input:
     def __init__(self, sim):
         self.sim = sim
-        self.variables = Variables(getattr(sim, "thermo_keyword", None))
+        self.variables = Variables(sim.thermo_keyword)
         self.echo = "log"      # LAMMPS default: commands go to the log file
         self.quit_status = None   # set by `quit`
         self._stack = []          # _Source being read, innermost last
@@ -271,7 +271,7 @@ class Input:
 
     def _is_root(self):
         # under MPI every rank reads the script; only rank 0 writes files
-        return getattr(getattr(self.sim, "comm", None), "me", 0) == 0
+        return self.sim.comm.me == 0
 
     def _echo(self, text):
         if self.echo == "log":

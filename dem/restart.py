@@ -35,7 +35,7 @@ def write_restart(sim, path):
                      "skin": nb.skin, "every": nb.every, "delay": nb.delay, "check": nb.check},
         "fixes": {f.id: f.state() for f in sim.modify.fixes},
         "pair": sim.pair.state() if sim.pair is not None else {},
-        "shapes": [list(w) for w in sim.shapes.definitions] if getattr(sim, "shapes", None) else [],
+        "shapes": [list(w) for w in sim.shapes.definitions],
     }
     if sim.comm.nprocs > 1:
         state = sim.comm.gather_restart(state)

@@ -68,8 +68,8 @@ class SimShapes(ShapeTable):
 
 
 def table(sim):
-    """sim.shapes (None when no shape was defined)."""
-    return getattr(sim, "shapes", None)
+    """sim.shapes (empty until a shape is defined)."""
+    return sim.shapes
 
 
 def kernel_arrays(sim):
@@ -97,7 +97,7 @@ def shape_view(sim):
 
 def shape_index(sim, name):
     t = table(sim)
-    if t is None:
+    if len(t) == 0:
         raise DemError(f"unknown shape '{name}': no shape defined yet", hint="shape NAME KIND params ...")
     return t.index(name)
 
@@ -339,7 +339,7 @@ class ShapeCommand(Command):
         a.need(2)
         name, kind = a[0], a[1]
         t = table(sim)
-        if t is not None and name in t.names:
+        if name in t.names:
             raise a.error(f"shape '{name}' already exists (shape indices must not change)")
         cls = sim.registry.get("shape", kind)
         values, crust, file = [], None, None
@@ -365,7 +365,7 @@ class ShapeCommand(Command):
             shape = cls(sim).make(values, crust, file)
         except (ValueError, OSError) as e:
             raise a.error(str(e)) from None
-        sim.shapes = (t if t is not None else SimShapes()).added(name, shape, words)
+        sim.shapes = t.added(name, shape, words)
         sim.print(f"Shape {name} ({KIND_NAMES.get(shape.kind, kind)}): volume {shape.volume:.6g}, bounding "
                   f"radius {shape.bounding_radius:.6g}, crust {shape.crust:.3g}, principal moments / density "
                   f"{' '.join(f'{m:.6g}' for m in shape.principal_moments)}")
@@ -373,7 +373,7 @@ class ShapeCommand(Command):
 
 def rebuild(sim, definitions):
     """Re-run shape definitions (from a restart) when the script has not defined them."""
-    if table(sim) is not None:
+    if len(table(sim)):
         return
     cmd = ShapeCommand(sim)
     for words in definitions:

@@ -1,5 +1,6 @@
 """The root object (rule 1): one Sim owns comm, atom, domain, neighbor, pair, modify, update, output,
-input and registry; every style receives the sim and reaches what it needs from it."""
+input, registry, the shape table and the computes; every style receives the sim and reaches what it
+needs from it."""
 import sys
 
 import numpy as np
@@ -9,10 +10,12 @@ from .comm import make_comm
 from .domain import Domain
 from .errors import DemError
 from .group import Groups
+from .input import Input
 from .modify import Modify
 from .neighbor import Neighbor
 from .output import Output
 from .registry import default_registry
+from .shape_command import SimShapes
 from .update import Update
 
 
@@ -27,7 +30,6 @@ class Sim:
     """
 
     def __init__(self, screen=True, log=None, variables=(), registry=None, comm=None):
-        from .input import Input   # late: the interpreter imports command machinery
         self.registry = registry or default_registry()
         self.comm = comm or make_comm(self)
         self.screen = screen and self.comm.me == 0
@@ -38,6 +40,8 @@ class Sim:
         self.neighbor = Neighbor(self)
         self.pair = None
         self.modify = Modify(self)
+        self.shapes = SimShapes()      # the shape table, empty until a `shape` command adds a row
+        self.computes = {}             # compute ID -> compute, in definition order
         self.update = Update(self)
         self.output = Output(self)
         self.input = Input(self)
@@ -105,10 +109,8 @@ class Sim:
 def fatal(sim, error):
     """Report a DemError on stderr/log and return the exit status."""
     text = f"ERROR: {error}"
-    if sim is not None and sim.comm.nprocs > 1:
-        return sim.comm.fatal(sim, text)     # one report, and never a hang when one rank failed alone
     if sim is not None:
-        sim.print(text, screen=False)
+        return sim.comm.fatal(sim, text)     # MPI: one report, and never a hang when one rank failed alone
     print(text, file=sys.stderr, flush=True)
     return 1
 

@@ -44,6 +44,15 @@ class FakeGroups:
         return np.int32(1 << self.names.index(name))
 
 
+class OneShape:
+    """A shape table of one row, for a dump whose posed_mesh is given: only its size and bounding radius
+    are read."""
+    radius = np.ones(1)
+
+    def __len__(self):
+        return 1
+
+
 class FakeSim:
     """Particles stored in shuffled local order; gather() returns them ordered by tag."""
 
@@ -54,6 +63,7 @@ class FakeSim:
         self.domain = types.SimpleNamespace(lo=np.array([-1.0, -2.0, 0.0]), hi=np.array([1.0, 2.0, 3.5]))
         self.groups = FakeGroups()
         self.units = "si"
+        self.shapes = ()                       # no shape defined: every particle is a sphere
         tags = rng.permutation(np.arange(10, 10 + n)).astype(np.int64)
         radius = rng.uniform(0.1, 0.5, n)
         q = rng.normal(size=(n, 4))
@@ -364,13 +374,13 @@ def test_vtk_empty_group_frame(tmp_path):
 def test_vtk_mesh_hook(tmp_path):
     """The shaped-particle hook: a posed mesh replaces the point of a particle with shape >= 0."""
     sim = FakeSim(n=4)
-    sim.shapes = object()                          # stands for the future shape library
+    sim.shapes = OneShape()
     sim.local["shape"][:] = [-1, 0, -1, 0]
     tri = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
     faces = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
 
     class Meshed(DumpVTK):
-        def posed_mesh(self, shape, position, quat):
+        def posed_mesh(self, shape, position, quat, scale=1.0):
             return tri + position, faces
 
     d = Meshed(sim, "d1", "all", 10, str(tmp_path / "m_*.vtu"), ["fields", "id", "radius"])

@@ -1,5 +1,6 @@
 """The input-script interpreter and variables, driven through a small stub simulation."""
 import math
+import types
 
 import pytest
 
@@ -47,6 +48,7 @@ class StubSim:
     def __init__(self):
         self.registry = StubRegistry([recorder(n) for n in ("run", "fix", "units", "region")] + [Boom])
         self.calls, self.where, self.screen, self.log = [], [], [], []
+        self.comm = types.SimpleNamespace(me=0)
         self.input = Input(self)
 
     def print(self, text, screen=True):

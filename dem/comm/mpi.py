@@ -27,10 +27,10 @@ import traceback
 import numpy as np
 from mpi4py import MPI
 
-from . import _comm_mpi as _comm
-from .atom import FORWARD_FIELDS
-from .comm import Comm
-from .errors import DemError
+from ..atom import FORWARD_FIELDS
+from ..errors import DemError
+from .serial import Comm
+from .swap import Forward, Reverse, Swap
 
 ERROR_WAIT = 5.0            # seconds to wait for the other ranks to stop with the same error
 ABORT_GRACE = 0.5           # seconds for the process manager to forward a rank's last words before Abort
@@ -58,19 +58,6 @@ def install_abort_hook(world):
 
 def divisors(n):
     return [k for k in range(1, n + 1) if n % k == 0]
-
-
-class Swap:
-    """One ghost message: `sendlist` (local indices) goes to `sendproc`; `nrecv` ghosts come from
-    `recvproc` and are stored at `first`.."""
-
-    __slots__ = ("sendlist", "sendproc", "recvproc", "first", "nrecv", "shift", "local", "buffers")
-
-    def buffer(self, key, rows, width):
-        buf = self.buffers.get(key)
-        if buf is None or buf.shape != (rows, width):
-            buf = self.buffers[key] = np.empty((rows, width))
-        return buf
 
 
 class CommMPI(Comm):
@@ -391,13 +378,9 @@ class CommMPI(Comm):
             if arr.dtype != np.float64:
                 raise DemError(f"forward/reverse communication of '{name}': only float fields")
             k = arr.shape[1] if arr.ndim == 2 else 1
-            cols.append((name, col, k))
+            cols.append((name, arr if arr.ndim == 2 else arr.reshape(-1, 1), col))
             col += k
         return cols, col
-
-    @staticmethod
-    def _rows(arr):
-        return arr if arr.ndim == 2 else arr.reshape(-1, 1)
 
     def _sendrecv(self, s, sbuf, key, n, dest, source, tag):
         """Send sbuf to `dest` and receive n rows from `source` for swap s (sbuf itself when the swap stays on
@@ -409,53 +392,40 @@ class CommMPI(Comm):
         self.world.Sendrecv([sbuf, MPI.DOUBLE], dest, tag, [rbuf, MPI.DOUBLE], source, tag)
         return rbuf, time.perf_counter() - t, sbuf.nbytes
 
+    def _communicate(self, way, fields, swaps):
+        """The loop forward and reverse share: per swap, every field packed side by side into one buffer,
+        one Sendrecv, the received columns stored; `way` (Forward or Reverse) says which rows go where."""
+        t0 = time.perf_counter()
+        cols, width = self._columns(fields)
+        wait, nbytes = 0.0, 0
+        for s in swaps:
+            nsend, nrecv = way.sizes(s)
+            dest, source = way.ends(s)
+            sbuf = s.buffer((way.name, "send", width), nsend, width)
+            for name, rows, col in cols:
+                way.pack(s, name, rows, sbuf, col)
+            rbuf, w, b = self._sendrecv(s, sbuf, (way.name, "recv", width), nrecv, dest, source, way.tag)
+            wait += w
+            nbytes += b
+            for name, rows, col in cols:
+                way.store(s, rbuf, col, rows)
+        st = self.stats
+        st[way.name] += time.perf_counter() - t0
+        st["wait"] += wait
+        st[way.name + "_bytes"] += nbytes
+
     def forward(self, fields=FORWARD_FIELDS):
         """Refresh the ghosts' copies of `fields` (float fields) from their owners."""
         if not self.swaps:
             return
-        t0 = time.perf_counter()
-        data = self.sim.atom.data
-        cols, width = self._columns(fields)
-        clock, wait, nbytes = time.perf_counter, 0.0, 0
-        for s in self.swaps:
-            sbuf = s.buffer(("fs", width), len(s.sendlist), width)
-            for name, col, k in cols:
-                if name == "x" and s.shift is not None:
-                    _comm.pack_shift(data["x"], s.sendlist, sbuf, col, *s.shift)
-                else:
-                    _comm.pack(self._rows(data[name]), s.sendlist, sbuf, col)
-            rbuf, w, b = self._sendrecv(s, sbuf, ("fr", width), s.nrecv, s.sendproc, s.recvproc, 3)
-            wait += w
-            nbytes += b
-            for name, col, k in cols:
-                _comm.unpack(rbuf, col, self._rows(data[name]), s.first, s.nrecv)
-        st = self.stats
-        st["forward"] += clock() - t0
-        st["wait"] += wait
-        st["forward_bytes"] += nbytes
-        st["nforward"] += 1
+        self._communicate(Forward, fields, self.swaps)
+        self.stats["nforward"] += 1
 
     def reverse(self, fields=REVERSE_FIELDS):
-        """Add what was accumulated on ghosts (forces, torques) to their owners."""
+        """Add what was accumulated on ghosts (forces, torques) to their owners, in reverse swap order."""
         if not self.swaps:
             return
-        t0 = time.perf_counter()
-        data = self.sim.atom.data
-        cols, width = self._columns(fields)
-        clock, wait, nbytes = time.perf_counter, 0.0, 0
-        for s in reversed(self.swaps):
-            gbuf = s.buffer(("rs", width), s.nrecv, width)
-            for name, col, k in cols:
-                _comm.pack_range(self._rows(data[name]), s.first, s.nrecv, gbuf, col)
-            obuf, w, b = self._sendrecv(s, gbuf, ("rr", width), len(s.sendlist), s.recvproc, s.sendproc, 4)
-            wait += w
-            nbytes += b
-            for name, col, k in cols:
-                _comm.add(obuf, col, self._rows(data[name]), s.sendlist)
-        st = self.stats
-        st["reverse"] += clock() - t0
-        st["wait"] += wait
-        st["reverse_bytes"] += nbytes
+        self._communicate(Reverse, fields, self.swaps[::-1])
 
     # ----- restarts -----------------------------------------------------------------------------
     def gather_restart(self, state):

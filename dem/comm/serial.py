@@ -1,50 +1,18 @@
-"""Communication: ghost images of particles and global reductions.
-
-`make_comm` picks the implementation: this serial `Comm`, or `dem.comm_mpi.CommMPI` (spatial domain
-decomposition over MPI, see docs/parallel.md) when the process was launched by mpiexec with more than
-one rank. Serial runs never import mpi4py.
+"""The communicator of a single process, and the base class of every communicator: each method the rest
+of the code calls is declared here, so callers never ask how many ranks there are to know whether a
+method exists (`CommMPI` in mpi.py overrides what a decomposition changes).
 
 Serial runs keep the same structure an MPI run needs: `borders()` makes ghost images near periodic
 boundaries (each ghost remembers its owner and the shift of its image), `forward()` refreshes ghost
 positions, velocities, spins and orientations from their owners every step, and `reverse()` adds the
 forces accumulated on ghosts back to their owners (half neighbor lists, Newton's third law).
 """
-import os
+import sys
 
 import numpy as np
 
-from . import _comm
-from .errors import DemError
-
-
-# environment variables by which MPI launchers announce the world size (MPICH/Hydra, Open MPI, PMIx)
-WORLD_SIZE_VARIABLES = ("PMI_SIZE", "OMPI_COMM_WORLD_SIZE", "PMIX_SIZE", "MPI_LOCALNRANKS")
-
-
-def launched_world_size():
-    """World size announced by an MPI launcher, without initialising MPI (1 when not launched)."""
-    for name in WORLD_SIZE_VARIABLES:
-        try:
-            n = int(os.environ.get(name, "1"))
-        except ValueError:
-            continue
-        if n > 1:
-            return n
-    return 1
-
-
-def make_comm(sim):
-    """Serial `Comm`, or `CommMPI` under mpiexec with more than one rank."""
-    if launched_world_size() > 1:
-        try:
-            from .comm_mpi import CommMPI
-        except ImportError as e:
-            raise DemError(f"launched on several MPI ranks but mpi4py cannot be imported ({e})",
-                           hint="pip install 'dem[mpi]' (mpi4py and the mpich wheel)") from None
-        comm = CommMPI(sim)
-        if comm.nprocs > 1:
-            return comm
-    return Comm(sim)
+from ..errors import DemError
+from . import _serial
 
 
 class Comm:
@@ -105,8 +73,8 @@ class Comm:
         return np.ones(len(x), dtype=bool)
 
     def balance(self, dims="xyz", weight="count", thresh=1.0):
-        """Shift sub-box boundaries to even out the load; returns (imbalance before, after)."""
-        return 1.0, 1.0
+        """Shift sub-box boundaries to even out the load; returns the imbalance before."""
+        return 1.0
 
     def imbalance(self, weight="count"):
         return 1.0
@@ -160,11 +128,28 @@ class Comm:
         if atom.nghost == 0:
             return
         d = atom.data
-        _comm.forward(d["x"], d["v"], d["omega"], d["quat"], self.ghost_owner, self.ghost_shift, atom.nlocal)
+        _serial.forward(d["x"], d["v"], d["omega"], d["quat"], self.ghost_owner, self.ghost_shift, atom.nlocal)
 
     def reverse(self):
         """Add the forces and torques accumulated on ghosts to their owners, in ghost order."""
         atom = self.sim.atom
         if atom.nghost == 0:
             return
-        _comm.reverse(atom.data["f"], atom.data["torque"], self.ghost_owner, atom.nlocal)
+        _serial.reverse(atom.data["f"], atom.data["torque"], self.ghost_owner, atom.nlocal)
+
+    # ----- restarts (serial: the file holds this process's particles as they are) -------------------
+    def gather_restart(self, state):
+        """The restart state to write on rank 0, completed with every rank's particles."""
+        return state
+
+    def scatter_restart(self, state):
+        """(fields, reference positions of the last neighbor build) of this rank's share of a restart."""
+        return state["fields"], state["neighbor"]["xhold"]
+
+    # ----- errors -------------------------------------------------------------------------------------
+    def fatal(self, sim, text):
+        """Report a DemError (log, then stderr) and return the exit status."""
+        if sim is not None:
+            sim.print(text, screen=False)
+        print(text, file=sys.stderr, flush=True)
+        return 1

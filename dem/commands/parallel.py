@@ -1,0 +1,40 @@
+"""Commands about the MPI decomposition: processors, and comm_modify / newton (accepted for LAMMPS
+compatibility)."""
+from ..command import Command
+
+
+class Ignored(Command):
+    """Accepted for LAMMPS compatibility and ignored (the behaviour is always what dem does)."""
+    usage = "..."
+
+    def __call__(self, words):
+        pass
+
+
+class CommModify(Ignored):
+    """comm_modify vel yes: accepted for LAMMPS compatibility (ghosts always carry velocities)."""
+    style = "comm_modify"
+
+
+class Newton(Ignored):
+    """newton on|off: accepted for LAMMPS compatibility (dem applies Newton's third law in half lists)."""
+    style = "newton"
+
+
+class Processors(Command):
+    """processors Px Py Pz
+
+    The grid of sub-boxes of an MPI run (Px x Py x Pz = number of ranks); `*` lets dem choose that
+    factor (the grid with the least sub-box surface for the box shape). Example: `processors * * 1` for
+    a bed under gravity along z. Must come before particles are created; serial runs only check it."""
+    style = "processors"
+    usage = "Px Py Pz"
+
+    def __call__(self, words):
+        a = self.args(words)
+        a.need(3)
+        grid = tuple(0 if w == "*" else a.int(k, f"P{'xyz'[k]}", positive=True) for k, w in
+                     enumerate(a.words[:3]))
+        if len(a) > 3:
+            raise a.error(f"processors takes three values (Px Py Pz), got extra '{a[3]}'")
+        self.sim.comm.set_processors(grid)
