@@ -28,7 +28,6 @@ from .errors import DemError, did_you_mean
 from .shapes import (Box, Cone, Cylinder, Ellipsoid, Polyhedron, ShapeTable, Sphere, Superquadric, cube,
                      pinacoid, tetrahedron)
 from .shapes.base import KIND_NAMES, SPHERE
-from .shapes.table import EMPTY
 
 
 # ----- the table ------------------------------------------------------------------------------------
@@ -72,27 +71,29 @@ def table(sim):
     return sim.shapes
 
 
-def kernel_arrays(sim):
-    """The shape table arrays for the kernels, after checking (collectively) that every particle's shape
-    index has a row: kernels do not check bounds."""
-    t = table(sim)
+def _check_rows(sim):
+    """Every particle's shape index has a row (checked collectively): kernels do not check bounds."""
     atom = sim.atom
     n = atom.nlocal
     top = int(atom.data["shape"][:n].max()) if n else -1
     top = int(sim.comm.max(top))
-    nrows = len(t) if t is not None else 0
+    nrows = len(sim.shapes)
     if top >= nrows:
         raise DemError(f"particles have shape index {top} but only {nrows} shape(s) are defined",
                        hint="define the shapes (shape NAME KIND ...) in the same order before read_restart "
                             "or read_data")
-    return t.kernel_arrays() if nrows else EMPTY.kernel_arrays()
+
+
+def kernel_arrays(sim):
+    """The shape table arrays (ShapeTable.kernel_arrays), after checking the particles' shape indices."""
+    _check_rows(sim)
+    return sim.shapes.kernel_arrays()
 
 
 def shape_view(sim):
     """The shape table as the kernels take it (dem.shapes._table.ShapeView), checked as kernel_arrays."""
-    t = table(sim)
-    kernel_arrays(sim)
-    return t.view() if t is not None and len(t) else EMPTY.view()
+    _check_rows(sim)
+    return sim.shapes.view()
 
 
 def shape_index(sim, name):

@@ -70,6 +70,3 @@ class ShapeTable:
         if self._view is None:
             self._view = ShapeView(self.kernel_arrays())
         return self._view
-
-
-EMPTY = ShapeTable([])      # the table of a run without shapes
