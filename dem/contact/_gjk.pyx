@@ -1157,7 +1157,8 @@ def contact_batch(ShapeView shapes, const int[::1] shape, const double[:, ::1] x
     at scale 1: the cores and crusts of the table): the nogil batch loop a pair style runs. guess[k] (and
     feat[k], NFEAT values, if given) warm-start pair k. corners: box cores posed as their corners, as pair
     convex/gjk poses them. Returns the contact count."""
-    cdef const TableView* T = &shapes.t
+    cdef TableView table = shapes.t
+    cdef const TableView* T = &table
     cdef Py_ssize_t k, m = pi.shape[0]
     cdef int i, j, si, sj, nc = 0
     cdef ShapeRef A, B
@@ -1198,7 +1199,8 @@ def distance_batch(ShapeView shapes, const int[::1] shape, const double[:, ::1] 
                    double[:, ::1] pa, double[:, ::1] pb):
     """Signed distances of the true bodies (rows of a ShapeTable, scale 1) for the pairs (pi[k], pj[k]);
     nogil loop. Returns 0."""
-    cdef const TableView* T = &shapes.t
+    cdef TableView table = shapes.t
+    cdef const TableView* T = &table
     cdef Py_ssize_t k, m = pi.shape[0]
     cdef int i, j
     cdef ShapeRef A, B

@@ -139,8 +139,10 @@ def poses(ParticleView view, ShapeView shapes, ConvexWork work, bint reset):
     ||R - R_prev||_2 r_shape (a rotation moves a point p by |(R - R_prev) p| <= ||R - R_prev||_2 |p|).
     R_prev^T R is a rotation by some angle t, so the singular values of R - R_prev are 2 sin(t/2) (twice)
     and 0: its spectral norm is its Frobenius norm over sqrt(2)."""
-    cdef const Particles* P = &view.p
-    cdef const TableView* T = &shapes.t
+    cdef Particles particles = view.p          # local copies: no call can change them (kept in registers)
+    cdef const Particles* P = &particles
+    cdef TableView table = shapes.t
+    cdef const TableView* T = &table
     cdef double[:, ::1] rot = work.rot, corners = work.corners, xprev = work.xprev
     cdef double[::1] move = work.move
     cdef int i, k, s
@@ -195,8 +197,10 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
     the list (zero after a rebuild); skipping changes no result: a rejected pair changes no history once its
     axis is stored (the line of centres at the first rejection, or the last GJK separation), so the
     trajectory does not depend on the cache."""
-    cdef const Particles* P = &view.p
-    cdef const TableView* T = &shapes.t
+    cdef Particles particles = view.p          # local copies: no call can change them (kept in registers)
+    cdef const Particles* P = &particles
+    cdef TableView table = shapes.t
+    cdef const TableView* T = &table
     cdef const double[:, ::1] rot = work.rot, corners = work.corners
     cdef double[::1] margin = work.margin, stats = work.stats
     cdef const double[::1] move = work.move

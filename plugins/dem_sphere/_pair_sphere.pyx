@@ -15,7 +15,8 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
             double[:, ::1] xi, bint use_history, double dt, bint advance, double[::1] stats, i64[::1] worst):
     """Adds contact forces and torques to f and torque (owned and ghost rows). stats receives
     [contacts, max overlap / smaller diameter, elastic energy]; worst the (i, j) of the largest overlap."""
-    cdef const Particles* P = &view.p
+    cdef Particles particles = view.p          # local copies: no call can change them (kept in registers)
+    cdef const Particles* P = &particles
     cdef int i, j, k, d, ncont = 0
     cdef double dx[3]
     cdef double out[6]

@@ -59,8 +59,10 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
           double[::1] stats):
     """surfaces: rows of S_NCOL values (SURFACE). coeff[w, type]: the law row of surface w. xi: XI_WIDTH
     history values per surface per particle. stats: the W_ sums (STAT)."""
-    cdef const Particles* P = &view.p
-    cdef const TableView* T = &shapes.t
+    cdef Particles particles = view.p          # local copies: no call can change them (kept in registers)
+    cdef const Particles* P = &particles
+    cdef TableView table = shapes.t
+    cdef const TableView* T = &table
     cdef int i, w, d, s, nw = surfaces.shape[0]
     cdef double gap, rho, energy = 0.0, torque = 0.0, ncont = 0.0, maxov = 0.0, ov
     cdef double p[3]
