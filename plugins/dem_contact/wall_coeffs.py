@@ -40,7 +40,7 @@ class WallCoefficients:
         return f"fix_{self.id}_xi"
 
     def history(self):
-        return self.sim.atom.data[self.history_name] if self.use_history else np.zeros((1, 3))
+        return self.sim.atom.data[self.history_name] if self.use_history else np.zeros((1, XI_WIDTH))
 
     def min_contact_time(self):
         atom = self.sim.atom

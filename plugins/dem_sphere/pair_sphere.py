@@ -5,6 +5,7 @@ from dem._particles import ParticleView
 from dem.errors import DemError
 from dem.history import History
 from dem.pair import Pair
+from dem_contact import XI_WIDTH
 from dem_contact.pair_coeffs import PairCoefficients
 
 from . import _pair_sphere
@@ -49,7 +50,7 @@ class PairSphere(PairCoefficients, Pair):
             raise DemError("pair_style sphere treats every particle as a sphere, but some particles have a "
                            "shape", hint="use pair_style convex/gjk for shaped particles")
         if need_history and self.history is None:
-            self.history = History(self.sim, "pair_xi", 3)
+            self.history = History(self.sim, "pair_xi", XI_WIDTH)
             self.sim.neighbor.histories.append(self.history)
 
     def compute(self, advance=True):
@@ -57,7 +58,7 @@ class PairSphere(PairCoefficients, Pair):
         a = sim.atom.data
         nb = sim.neighbor
         h = self.history
-        xi = h.values if h is not None else np.zeros((1, 3))
+        xi = h.values if h is not None else np.zeros((1, XI_WIDTH))
         _pair_sphere.compute(ParticleView(sim.atom), nb.offsets, nb.neigh, self.table, xi, h is not None,
                              sim.update.dt, advance, self.stats, self.worst)
         self.ncontacts = int(self.stats[0])
