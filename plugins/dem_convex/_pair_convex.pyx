@@ -29,7 +29,7 @@ from dem.shapes._support cimport (ShapeRef, Kind, quat_to_rot, support_world, po
                                   corner_box, MARGIN, NPARAM, NCORNER)
 from dem.shapes._table cimport ShapeView, TableView, core_ref, round_body
 from dem_contact.apply cimport Body, apply_law
-from dem_contact.law cimport forget
+from dem_contact.law cimport XI_WIDTH, forget
 
 ctypedef cnp.int64_t i64
 
@@ -44,9 +44,9 @@ cdef extern from *:
     void prefetch "DEM_PREFETCH"(const void* p) noexcept nogil
 
 cdef enum:
-    AXIS = 3                          # history slots (module docstring): xi 0-2, axis 3-5, tag, simplex
-    TAG = 6
-    FEAT = 7
+    AXIS = XI_WIDTH                   # history slots (module docstring): xi 0-2, axis 3-5, tag, simplex
+    TAG = AXIS + 3
+    FEAT = TAG + 1
 HISTORY = FEAT + NFEAT                # history values per pair
 TAG_SLOT, FEAT_SLOT = TAG, FEAT       # (for Python: tests, tools)
 
