@@ -27,7 +27,7 @@ from .command import Command
 from .errors import DemError, did_you_mean
 from .shapes import (Box, Cone, Cylinder, Ellipsoid, Polyhedron, ShapeTable, Sphere, Superquadric, cube,
                      pinacoid, tetrahedron)
-from .shapes.base import KIND_NAMES, SPHERE
+from .shapes.base import KIND_NAMES
 
 
 # ----- the table ------------------------------------------------------------------------------------

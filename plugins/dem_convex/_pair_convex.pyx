@@ -1,7 +1,7 @@
 # cython: language_level=3
 """Contacts between convex particles (shape table rows) and spheres: bounding-sphere broad phase, then
-either the analytic sphere geometry (two spheres) or the Grains3D crust contact (dem/contact/_gjk.pyx: GJK on the
-shrunk cores, EPA when the cores overlap), one contact point per pair, and the shared law
+either the analytic sphere geometry (two spheres) or the Grains3D crust contact (dem/contact/_gjk.pyx: GJK
+on the shrunk cores, EPA when the cores overlap), one contact point per pair, and the shared law
 (dem_contact/apply.pxd).
 
 A scaled body is handed to GJK as its unscaled shape with the rotation matrix multiplied by the scale s:
@@ -13,8 +13,8 @@ History per pair (values[k, 0:HISTORY]): the tangential spring xi (3, when ks > 
 start: the direction of the last core separation pa - pb (3, unit; also the pre-test axis), a tag of the
 two shapes it was made for (1 value: a particle given another shape starts cold), negative while the pair
 touched at its last GJK call (such a pair goes to GJK without the pre-test), and the last simplex (NFEAT,
-see dem/contact/_gjk.pyx: vertex pairs of polytopes, body-frame points otherwise). A lasting contact between
-boxes reads the first 13 values only.
+see dem/contact/_gjk.pyx: vertex pairs of polytopes, body-frame points otherwise). A lasting contact
+between boxes reads the first 13 values only.
 
 Box cores are posed once per step as their 8 world corners (poses); GJK reads its vertex pairs from them.
 The rows of the next pair in the list are prefetched while the current one is solved: they are scattered
