@@ -33,15 +33,15 @@ cdef inline bint _in_region(int kind, const double* p, const double[::1] rp) noe
     return True
 
 
-def voxel_count(const double[:, ::1] x, const double[::1] radius, const int[::1] mask, int groupbit, int n,
-                const double[::1] glo, const double[::1] h, const i64[::1] npts,
-                const double[::1] boxlo, const double[::1] prd, const int[::1] periodic,
-                int region_kind, const double[::1] region_params, bint side_in, int iz_start=0,
-                int iz_stride=1):
+def voxel_count(const double[:, ::1] x, const double[::1] radius, const double[::1] glo, const double[::1] h,
+                const i64[::1] npts, const double[::1] boxlo, const double[::1] prd, const int[::1] periodic,
+                int region_kind, const double[::1] region_params, int iz_start=0, int iz_stride=1):
     """Grid points glo + (i + 1/2) h, i < npts, per axis, in the z-layers iz_start, iz_start + iz_stride,
-    ... (ranks share the layers). Returns (points inside the region, solid ones)."""
+    ... (ranks share the layers), against the spheres (x, radius) of the group. Returns (points inside the
+    region, solid ones)."""
     cdef int i, d, q, m, last = -1, b
     cdef int cells[27]
+    cdef int n = <int>radius.shape[0]
     cdef i64 ix, iy, iz, kz, nz = (npts[2] - iz_start + iz_stride - 1) // iz_stride, inside = 0, solid = 0
     cdef double rmax = 0.0
     cdef double lo[3]
@@ -50,9 +50,9 @@ def voxel_count(const double[:, ::1] x, const double[::1] radius, const int[::1]
     cdef double p[3]
     cdef int ncell[3]
     cdef int cc[3]
-    cdef bint hit, inreg
+    cdef bint hit
     for i in range(n):
-        if (mask[i] & groupbit) and radius[i] > rmax:
+        if radius[i] > rmax:
             rmax = radius[i]
     if rmax == 0.0:
         for kz in range(nz):
@@ -62,7 +62,7 @@ def voxel_count(const double[:, ::1] x, const double[::1] radius, const int[::1]
                     p[0] = glo[0] + (ix + 0.5) * h[0]
                     p[1] = glo[1] + (iy + 0.5) * h[1]
                     p[2] = glo[2] + (iz + 0.5) * h[2]
-                    if _in_region(region_kind, p, region_params) == side_in:
+                    if _in_region(region_kind, p, region_params):
                         inside += 1
         return inside, 0
     for d in range(3):
@@ -89,8 +89,6 @@ def voxel_count(const double[:, ::1] x, const double[::1] radius, const int[::1]
     cdef int[::1] nxt = np.full(max(n, 1), -1, dtype=np.int32)
     with nogil:
         for i in range(n):
-            if not (mask[i] & groupbit):
-                continue
             hit = True
             for d in range(3):
                 cc[d] = <int>floor((x[i, d] - lo[d]) / size[d])
@@ -117,8 +115,7 @@ def voxel_count(const double[:, ::1] x, const double[::1] radius, const int[::1]
                 last = -1
                 for ix in range(npts[0]):
                     p[0] = glo[0] + (ix + 0.5) * h[0]
-                    inreg = _in_region(region_kind, p, region_params)
-                    if inreg != side_in:
+                    if not _in_region(region_kind, p, region_params):
                         continue
                     inside += 1
                     if last >= 0 and dist2(p, &x[last, 0], &prd[0], &periodic[0]) < radius[last] * radius[last]:

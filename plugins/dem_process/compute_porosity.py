@@ -86,19 +86,17 @@ class ComputePorosity(Compute):
         glo, h, npts = self.grid()
         kind, params = self._region_params()
         n = atom.nlocal
-        x, r, mask = atom.data["x"], atom.data["radius"], atom.data["mask"]
+        sel = self.group_mask()
+        x, r = atom.data["x"][:n][sel], atom.data["radius"][:n][sel]
         if comm.nprocs > 1:
             # every rank sees every particle of the group and counts its share of the grid layers
-            sel = self.group_mask()
-            _, x = comm.allgather_rows(atom.data["tag"][:n][sel], x[:n][sel])
-            _, r = comm.allgather_rows(atom.data["tag"][:n][sel], r[:n][sel])
-            x = np.ascontiguousarray(np.asarray(x, dtype=float).reshape(-1, 3))
-            r = np.ascontiguousarray(r, dtype=float)
-            n = len(r)
-            mask = np.full(n, int(self.groupbit), dtype=np.int32)
-        inside, solid = _compute_porosity.voxel_count(
-            x, r, mask, int(self.groupbit), n, glo, h, npts, dom.lo, dom.prd, dom.periodic.astype(np.int32),
-            kind, params, True, comm.me, comm.nprocs)
+            _, x = comm.allgather_rows(atom.data["tag"][:n][sel], x)
+            _, r = comm.allgather_rows(atom.data["tag"][:n][sel], r)
+        x = np.ascontiguousarray(np.asarray(x, dtype=float).reshape(-1, 3))
+        r = np.ascontiguousarray(r, dtype=float)
+        inside, solid = _compute_porosity.voxel_count(x, r, glo, h, npts, dom.lo, dom.prd,
+                                                      dom.periodic.astype(np.int32), kind, params, comm.me,
+                                                      comm.nprocs)
         inside, solid = comm.sum(int(inside)), comm.sum(int(solid))
         phi = solid / inside if inside else 0.0
         return np.array([1.0 - phi, phi, float(inside), solid * float(np.prod(h))])
