@@ -8,9 +8,12 @@ pair styles call ``crust_contact`` / ``signed_distance`` from Cython (see ``cont
 * ``contact``: Grains3D crust contact of the rounded bodies core (+) ball(crust) (see dem/shapes/base.py):
   None when apart, else (overlap, normal from b to a, contact point).
 """
+import functools
+
 import numpy as np
 
 from .contact import _gjk
+from .shapes.table import ShapeTable
 
 __all__ = ["distance", "contact", "rotation", "DEFAULT_TOL"]
 
@@ -25,14 +28,11 @@ def _vec(x, n):
     return a
 
 
-def _body(shape):
-    return shape.kind, np.ascontiguousarray(shape.params, float), \
-        np.ascontiguousarray(shape.vertices, float).reshape(-1, 3)
-
-
-def _core(shape):
-    return shape.core_kind, np.ascontiguousarray(shape.core_params, float), \
-        np.ascontiguousarray(shape.core_vertices, float).reshape(-1, 3)
+@functools.lru_cache(maxsize=256)
+def _pair(shape_a, shape_b):
+    """The two shapes as a two-row table (rows 0 and 1), as the kernels take shapes (cached: tests and
+    tools query the same shapes many times)."""
+    return ShapeTable([shape_a, shape_b]).view()
 
 
 def rotation(q):
@@ -44,8 +44,8 @@ def rotation(q):
 def distance(shape_a, x_a, q_a, shape_b, x_b, q_b, tol=DEFAULT_TOL, guess=None):
     """(distance, point_a, point_b): closest points when apart; when the bodies overlap, distance is minus
     the penetration depth and the points are the deepest points (point_a - point_b = depth * n_ab)."""
-    d, pa, pb, status = _gjk.pair_distance(*_body(shape_a), _vec(x_a, 3), _vec(q_a, 4),
-                                           *_body(shape_b), _vec(x_b, 3), _vec(q_b, 4), tol, guess)
+    d, pa, pb, status = _gjk.pair_distance(_pair(shape_a, shape_b), _vec(x_a, 3), _vec(q_a, 4), _vec(x_b, 3),
+                                           _vec(q_b, 4), tol, guess)
     if status < 0:
         raise RuntimeError("EPA failed on a degenerate configuration")
     return d, pa, pb
@@ -55,8 +55,8 @@ def contact(shape_a, x_a, q_a, shape_b, x_b, q_b, tol=DEFAULT_TOL, guess=None, w
     """None, or (overlap, normal, point) of the rounded bodies: overlap > 0, unit normal from b to a (the
     direction a must move to separate), point midway between the two surfaces. ``with_code`` appends
     how it was found: 1 crust (GJK on the cores), 2 EPA on the cores, 3 degenerate fallback."""
-    code, ov, n, p = _gjk.pair_contact(*_core(shape_a), shape_a.crust, _vec(x_a, 3), _vec(q_a, 4),
-                                       *_core(shape_b), shape_b.crust, _vec(x_b, 3), _vec(q_b, 4), tol, guess)
+    code, ov, n, p = _gjk.pair_contact(_pair(shape_a, shape_b), _vec(x_a, 3), _vec(q_a, 4), _vec(x_b, 3),
+                                       _vec(q_b, 4), tol, guess)
     if code == CONTACT_NONE:
         return None
     return (ov, n, p, code) if with_code else (ov, n, p)

@@ -27,8 +27,8 @@ cimport numpy as cnp
 from libc.math cimport sqrt, fabs, cos, sin, INFINITY
 from dem._math cimport cross3, det3, dot3, sub3
 from dem.shapes._support cimport (ShapeRef, support_world, support_world_id, box_support_id, box_corners,
-                                  corner_box, vertex_world, posed_point, quat_to_rot, polytope_core, NPARAM,
-                                  MARGIN, NCORNER, POLYHEDRON)
+                                  corner_box, vertex_world, posed_point, quat_to_rot, polytope_core, MARGIN,
+                                  NCORNER)
 from dem.shapes._table cimport ShapeView, TableView, body_ref, core_ref
 
 cdef enum:
@@ -1087,24 +1087,8 @@ cdef int crust_contact(const ShapeRef* Acore, double crust_a, const double* Ra, 
 
 
 # ---------------------------------------------------------------- Python entry points
-cdef inline void _set_ref(ShapeRef* r, int kind, const double[::1] params, const double[:, ::1] verts):
-    if params.shape[0] < NPARAM:
-        raise ValueError("params must have NPARAM entries")
-    r.kind = kind
-    r.params = &params[0]
-    r.nverts = <int>verts.shape[0]
-    r.verts = &verts[0, 0] if verts.shape[0] > 0 else NULL
-    r.corners = NULL
-    if kind == POLYHEDRON and r.nverts == 0:
-        raise ValueError("a polyhedron needs vertices")
-
-
-cdef void _set_pair(ShapeRef* A, int ka, const double[::1] params_a, const double[:, ::1] verts_a,
-                    const double[::1] qa, double* Ra, ShapeRef* B, int kb, const double[::1] params_b,
-                    const double[:, ::1] verts_b, const double[::1] qb, double* Rb, guess, double* g):
-    """Both posed shapes of a single-pair query, and the warm start (zero without a guess)."""
-    _set_ref(A, ka, params_a, verts_a)
-    _set_ref(B, kb, params_b, verts_b)
+cdef void _pose_pair(const double[::1] qa, double* Ra, const double[::1] qb, double* Rb, guess, double* g):
+    """Rotations of a single-pair query and the warm start (zero without a guess)."""
     quat_to_rot(&qa[0], Ra)
     quat_to_rot(&qb[0], Rb)
     g[0] = g[1] = g[2] = 0.0
@@ -1112,11 +1096,10 @@ cdef void _set_pair(ShapeRef* A, int ka, const double[::1] params_a, const doubl
         g[0], g[1], g[2] = guess[0], guess[1], guess[2]
 
 
-def pair_distance(int ka, const double[::1] params_a, const double[:, ::1] verts_a,
-                  const double[::1] xa, const double[::1] qa,
-                  int kb, const double[::1] params_b, const double[:, ::1] verts_b,
-                  const double[::1] xb, const double[::1] qb, double tol=1e-10, guess=None):
-    """Signed distance of two posed shapes: (dist, point_a, point_b, status); dist < 0 is -penetration."""
+def pair_distance(ShapeView pair, const double[::1] xa, const double[::1] qa, const double[::1] xb,
+                  const double[::1] qb, double tol=1e-10, guess=None):
+    """Signed distance of the bodies of rows 0 and 1 of a table, posed: (dist, point_a, point_b, status);
+    dist < 0 is -penetration."""
     cdef ShapeRef A, B
     cdef double Ra[9]
     cdef double Rb[9]
@@ -1124,17 +1107,18 @@ def pair_distance(int ka, const double[::1] params_a, const double[:, ::1] verts
     cdef double d = 0.0
     cdef int r
     cdef cnp.ndarray[double, ndim=1] pa = np.zeros(3), pb = np.zeros(3)
-    _set_pair(&A, ka, params_a, verts_a, qa, Ra, &B, kb, params_b, verts_b, qb, Rb, guess, g)
+    body_ref(&pair.t, 0, &A)
+    body_ref(&pair.t, 1, &B)
+    _pose_pair(qa, Ra, qb, Rb, guess, g)
     with nogil:
         r = signed_distance(&A, Ra, &xa[0], &B, Rb, &xb[0], tol, g, &d, <double*>pa.data, <double*>pb.data)
     return d, pa, pb, r
 
 
-def pair_contact(int ka, const double[::1] params_a, const double[:, ::1] verts_a, double crust_a,
-                 const double[::1] xa, const double[::1] qa,
-                 int kb, const double[::1] params_b, const double[:, ::1] verts_b, double crust_b,
-                 const double[::1] xb, const double[::1] qb, double tol=1e-10, guess=None):
-    """Crust contact of two posed cores: (code, overlap, normal, point); code 0 means no contact."""
+def pair_contact(ShapeView pair, const double[::1] xa, const double[::1] qa, const double[::1] xb,
+                 const double[::1] qb, double tol=1e-10, guess=None):
+    """Crust contact of the cores of rows 0 and 1 of a table, posed: (code, overlap, normal, point); code 0
+    means no contact."""
     cdef ShapeRef A, B
     cdef double Ra[9]
     cdef double Rb[9]
@@ -1142,9 +1126,11 @@ def pair_contact(int ka, const double[::1] params_a, const double[:, ::1] verts_
     cdef double ov = 0.0
     cdef int r
     cdef cnp.ndarray[double, ndim=1] n = np.zeros(3), p = np.zeros(3)
-    _set_pair(&A, ka, params_a, verts_a, qa, Ra, &B, kb, params_b, verts_b, qb, Rb, guess, g)
+    core_ref(&pair.t, 0, &A)
+    core_ref(&pair.t, 1, &B)
+    _pose_pair(qa, Ra, qb, Rb, guess, g)
     with nogil:
-        r = crust_contact(&A, crust_a, Ra, &xa[0], &B, crust_b, Rb, &xb[0], tol, g, NULL, &ov,
+        r = crust_contact(&A, pair.t.crust[0], Ra, &xa[0], &B, pair.t.crust[1], Rb, &xb[0], tol, g, NULL, &ov,
                           <double*>n.data, <double*>p.data)
     return r, ov, n, p
 
