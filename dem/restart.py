@@ -3,7 +3,7 @@ and wall histories, neighbor-list reference positions, fix states, step and time
 `read_restart` + the same commands continue a run bitwise on one rank.
 
 Particle order is kept as it is in memory (not sorted by id): the order in which forces are summed is
-then the same as in the uninterrupted run."""
+then the same as in the uninterrupted run. Layout and versions: docs/restart.md."""
 import os
 import pickle
 
@@ -12,7 +12,12 @@ import numpy as np
 from .command import Command
 from .errors import DemError
 
-FORMAT = "dem-restart-1"
+FORMAT = "dem-restart-2"
+VERSION = 2
+# version 1 (no version number, format "dem-restart-1") had only single-record history stores
+# ({name}_n, _tag, _val); version 2 adds keyed stores ({name}_key). A keyed history reads a store
+# without keys as key-0 records, so a version 1 file is read as it is.
+READABLE = {"dem-restart-1": 1, FORMAT: VERSION}
 
 
 def write_restart(sim, path):
@@ -23,7 +28,7 @@ def write_restart(sim, path):
     fields = {name: atom.data[name][:n].copy() for name in atom.fields}
     nb = sim.neighbor
     state = {
-        "format": FORMAT,
+        "format": FORMAT, "version": VERSION,
         "step": sim.update.ntimestep, "time": sim.update.time, "dt": sim.update.dt,
         "lo": sim.domain.lo.copy(), "hi": sim.domain.hi.copy(), "boundary": sim.domain.boundary,
         "ntypes": atom.ntypes, "natoms": atom.natoms, "max_tag": atom.max_tag, "groups": sim.groups.names,
@@ -49,6 +54,20 @@ def write_restart(sim, path):
             raise DemError(f"write_restart: cannot write '{path}': {e.strerror}") from None
 
 
+def check_version(state, path):
+    """The version of a restart state, converted to the current one; a DemError for any other file."""
+    fmt = state.get("format") if isinstance(state, dict) else None
+    if not isinstance(fmt, str) or not fmt.startswith("dem-restart-"):
+        raise DemError(f"read_restart: '{path}' is not a dem restart file")
+    version = READABLE.get(fmt)
+    if version is None or state.get("version", 1) != version:
+        found = state.get("version", fmt[len("dem-restart-"):])
+        raise DemError(f"read_restart: '{path}' is a dem restart file of version {found}; this dem reads "
+                       f"versions {', '.join(str(v) for v in sorted(set(READABLE.values())))} (writes {VERSION})")
+    state["format"], state["version"] = FORMAT, VERSION
+    return version
+
+
 def read_restart(sim, path):
     try:
         with open(path, "rb") as fh:
@@ -57,8 +76,7 @@ def read_restart(sim, path):
         raise DemError(f"read_restart: cannot open '{path}': {e.strerror}") from None
     except (pickle.UnpicklingError, EOFError, AttributeError):
         raise DemError(f"read_restart: '{path}' is not a dem restart file") from None
-    if not isinstance(state, dict) or state.get("format") != FORMAT:
-        raise DemError(f"read_restart: '{path}' is not a dem restart file")
+    check_version(state, path)
     if sim.domain.box_exist:
         raise DemError("read_restart: the box already exists (read_restart creates it)")
     dom, atom, up, nb = sim.domain, sim.atom, sim.update, sim.neighbor
