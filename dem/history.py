@@ -31,8 +31,9 @@ class History:
         atom, nb = self.sim.atom, self.sim.neighbor
         if nb.offsets is None or len(self.values) != nb.nentries:
             return
+        nlocal = min(atom.nlocal, len(nb.offsets) - 1)     # particles added since the build have no row
         while True:
-            need = _history.pack(nb.offsets, nb.neigh, atom.data["tag"], self.values, atom.nlocal,
+            need = _history.pack(nb.offsets, nb.neigh, atom.data["tag"], self.values, nlocal,
                                  atom.data[f"{self.name}_n"], atom.data[f"{self.name}_tag"],
                                  atom.data[f"{self.name}_val"])
             if not need:
@@ -102,7 +103,7 @@ class KeyedHistory:
         atom, nb = self.sim.atom, self.sim.neighbor
         if nb.offsets is None or self.buffers.nentries != nb.nentries:
             return
-        nlocal = min(atom.nlocal, len(nb.offsets) - 1)
+        nlocal = min(atom.nlocal, len(nb.offsets) - 1)     # particles added since the build have no row
         while True:
             need = _history.pack_keyed(nb.offsets, nb.neigh, atom.data["tag"], self.buffers, nlocal,
                                        *self._store())
