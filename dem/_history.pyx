@@ -89,7 +89,8 @@ cdef class KeyedBuffers:
     cdef void _bind(self):
         cdef KeyedView* h = &self.view
         h.offsets, h.keys, h.values = _i64(self.offsets), _i64(self.keys), _f64(self.values)
-        h.next_offsets, h.next_keys, h.next_values = _i64(self.next_offsets), _i64(self.next_keys), _f64(self.next_values)
+        h.next_offsets, h.next_keys = _i64(self.next_offsets), _i64(self.next_keys)
+        h.next_values = _f64(self.next_values)
         h.next_cap = min(len(self.next_keys), len(self.next_values))
 
     def set_old(self, offsets, keys, values):

@@ -5,19 +5,17 @@ and wall histories, neighbor-list reference positions, fix states, step and time
 Particle order is kept as it is in memory (not sorted by id): the order in which forces are summed is
 then the same as in the uninterrupted run. Layout and versions: docs/restart.md."""
 import os
-import pickle
 
 import numpy as np
 
+from . import restart_file
 from .command import Command
 from .errors import DemError
 
-FORMAT = "dem-restart-2"
-VERSION = 2
-# version 1 (no version number, format "dem-restart-1") had only single-record history stores
-# ({name}_n, _tag, _val); version 2 adds keyed stores ({name}_key). A keyed history reads a store
-# without keys as key-0 records, so a version 1 file is read as it is.
-READABLE = {"dem-restart-1": 1, FORMAT: VERSION}
+# 1: pickle, single-record history stores ({name}_n, _tag, _val); 2: pickle, keyed stores too
+# ({name}_key); 3: HDF5 (restart_file). Pickles are refused: loading one can run any code.
+VERSION = 3
+PICKLE_VERSIONS = "1 or 2"
 
 
 def write_restart(sim, path):
@@ -28,7 +26,6 @@ def write_restart(sim, path):
     fields = {name: atom.data[name][:n].copy() for name in atom.fields}
     nb = sim.neighbor
     state = {
-        "format": FORMAT, "version": VERSION,
         "step": sim.update.ntimestep, "time": sim.update.time, "dt": sim.update.dt,
         "lo": sim.domain.lo.copy(), "hi": sim.domain.hi.copy(), "boundary": sim.domain.boundary,
         "ntypes": atom.ntypes, "natoms": atom.natoms, "max_tag": atom.max_tag, "groups": sim.groups.names,
@@ -47,36 +44,28 @@ def write_restart(sim, path):
     if sim.comm.me == 0:
         tmp = f"{path}.tmp{os.getpid()}"
         try:
-            with open(tmp, "wb") as fh:
-                pickle.dump(state, fh, protocol=pickle.HIGHEST_PROTOCOL)
+            restart_file.write(tmp, state, VERSION)
             os.replace(tmp, path)
         except OSError as e:
-            raise DemError(f"write_restart: cannot write '{path}': {e.strerror}") from None
+            raise DemError(f"write_restart: cannot write '{path}': {e.strerror or e}") from None
 
 
-def check_version(state, path):
-    """The version of a restart state, converted to the current one; a DemError for any other file."""
-    fmt = state.get("format") if isinstance(state, dict) else None
-    if not isinstance(fmt, str) or not fmt.startswith("dem-restart-"):
-        raise DemError(f"read_restart: '{path}' is not a dem restart file")
-    version = READABLE.get(fmt)
-    if version is None or state.get("version", 1) != version:
-        found = state.get("version", fmt[len("dem-restart-"):])
+def load(path):
+    """The state of a restart file of the current version, checked; a DemError naming the file for any
+    other file (an old pickle restart is recognised by its first byte and never loaded)."""
+    version = restart_file.file_version(path)
+    if version != VERSION:
+        found = PICKLE_VERSIONS if version is None else version
         raise DemError(f"read_restart: '{path}' is a dem restart file of version {found}; this dem reads "
-                       f"versions {', '.join(str(v) for v in sorted(set(READABLE.values())))} (writes {VERSION})")
-    state["format"], state["version"] = FORMAT, VERSION
-    return version
+                       f"version {VERSION} only" + (" (old pickle restarts are not loaded: they could run "
+                                                    "code)" if version is None else ""))
+    state = restart_file.read(path)
+    restart_file.validate(state, path)
+    return state
 
 
 def read_restart(sim, path):
-    try:
-        with open(path, "rb") as fh:
-            state = pickle.load(fh)
-    except OSError as e:
-        raise DemError(f"read_restart: cannot open '{path}': {e.strerror}") from None
-    except (pickle.UnpicklingError, EOFError, AttributeError):
-        raise DemError(f"read_restart: '{path}' is not a dem restart file") from None
-    check_version(state, path)
+    state = load(path)
     if sim.domain.box_exist:
         raise DemError("read_restart: the box already exists (read_restart creates it)")
     dom, atom, up, nb = sim.domain, sim.atom, sim.update, sim.neighbor

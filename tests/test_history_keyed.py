@@ -154,8 +154,9 @@ def test_records_survive_a_restart(tmp_path):
     assert h2.by_tags() == before
 
 
-def test_version_1_restart_reads_as_key_0_records(tmp_path):
-    """A restart of version 1 (single-record rows) read by a keyed history: one key-0 record per row."""
+def test_single_record_store_reads_as_key_0_records(tmp_path):
+    """A restart holding a single-record history (one row per pair) read by a keyed history of that name:
+    one key-0 record per row (how a style turned keyed reads its older restarts)."""
     sim = dem.Simulation(screen=False)
     sim.commands(SETUP.format(boundary="f f f") + FORCES.replace("en 0.9", "en 0.9 mu 0.5 ks 100"))
     sim.atom.local("v")[:] = np.random.default_rng(1).normal(scale=3.0, size=(sim.atom.nlocal, 3))
@@ -164,12 +165,8 @@ def test_version_1_restart_reads_as_key_0_records(tmp_path):
     rows = {(int(tag[a]), int(tag[b]), 0): tuple(v) for a, b, v in zip(i, j, sim.pair.history.values)
             if np.any(v)}
     assert len(rows) > 10
-    path = tmp_path / "v1.restart"
+    path = tmp_path / "single.restart"
     sim.command(f"write_restart {path}")
-    state = pickle.loads(path.read_bytes())
-    state["format"] = "dem-restart-1"
-    del state["version"]
-    path.write_bytes(pickle.dumps(state))
     new = dem.Simulation(screen=False)
     new.command(f"read_restart {path}")
     new.commands(FORCES)
@@ -179,15 +176,15 @@ def test_version_1_restart_reads_as_key_0_records(tmp_path):
     assert h.by_tags() == rows
 
 
-def test_unknown_restart_version_is_refused(tmp_path):
-    sim, _ = make(register=False)
-    path = tmp_path / "future.restart"
+def test_restart_of_another_width_is_refused(tmp_path):
+    sim, h = make()
+    fill(sim, h)
+    path = tmp_path / "keyed.restart"
     sim.command(f"write_restart {path}")
-    state = pickle.loads(path.read_bytes())
-    state["format"], state["version"] = "dem-restart-99", 99
-    path.write_bytes(pickle.dumps(state))
-    with pytest.raises(DemError, match=r"future.restart.*version 99.*reads versions 1, 2"):
-        dem.Simulation(screen=False).command(f"read_restart {path}")
+    new = dem.Simulation(screen=False)
+    new.command(f"read_restart {path}")
+    with pytest.raises(DemError, match=f"'keyed': the restart holds {WIDTH} values per record, this pair style 2"):
+        KeyedHistory(new, "keyed", 2)
 
 
 MIGRATE = f"""
