@@ -3,16 +3,19 @@ and wall histories, neighbor-list reference positions, fix states, step and time
 `read_restart` + the same commands continue a run bitwise on one rank.
 
 Particle order is kept as it is in memory (not sorted by id): the order in which forces are summed is
-then the same as in the uninterrupted run."""
+then the same as in the uninterrupted run. Layout and versions: docs/restart.md."""
 import os
-import pickle
 
 import numpy as np
 
+from . import restart_file
 from .command import Command
 from .errors import DemError
 
-FORMAT = "dem-restart-1"
+# 1: pickle, single-record history stores ({name}_n, _tag, _val); 2: pickle, keyed stores too
+# ({name}_key); 3: HDF5 (restart_file). Pickles are refused: loading one can run any code.
+VERSION = 3
+PICKLE_VERSIONS = "1 or 2"
 
 
 def write_restart(sim, path):
@@ -23,7 +26,6 @@ def write_restart(sim, path):
     fields = {name: atom.data[name][:n].copy() for name in atom.fields}
     nb = sim.neighbor
     state = {
-        "format": FORMAT,
         "step": sim.update.ntimestep, "time": sim.update.time, "dt": sim.update.dt,
         "lo": sim.domain.lo.copy(), "hi": sim.domain.hi.copy(), "boundary": sim.domain.boundary,
         "ntypes": atom.ntypes, "natoms": atom.natoms, "max_tag": atom.max_tag, "groups": sim.groups.names,
@@ -42,23 +44,28 @@ def write_restart(sim, path):
     if sim.comm.me == 0:
         tmp = f"{path}.tmp{os.getpid()}"
         try:
-            with open(tmp, "wb") as fh:
-                pickle.dump(state, fh, protocol=pickle.HIGHEST_PROTOCOL)
+            restart_file.write(tmp, state, VERSION)
             os.replace(tmp, path)
         except OSError as e:
-            raise DemError(f"write_restart: cannot write '{path}': {e.strerror}") from None
+            raise DemError(f"write_restart: cannot write '{path}': {e.strerror or e}") from None
+
+
+def load(path):
+    """The state of a restart file of the current version, checked; a DemError naming the file for any
+    other file (an old pickle restart is recognised by its first byte and never loaded)."""
+    version = restart_file.file_version(path)
+    if version != VERSION:
+        found = PICKLE_VERSIONS if version is None else version
+        raise DemError(f"read_restart: '{path}' is a dem restart file of version {found}; this dem reads "
+                       f"version {VERSION} only" + (" (old pickle restarts are not loaded: they could run "
+                                                    "code)" if version is None else ""))
+    state = restart_file.read(path)
+    restart_file.validate(state, path)
+    return state
 
 
 def read_restart(sim, path):
-    try:
-        with open(path, "rb") as fh:
-            state = pickle.load(fh)
-    except OSError as e:
-        raise DemError(f"read_restart: cannot open '{path}': {e.strerror}") from None
-    except (pickle.UnpicklingError, EOFError, AttributeError):
-        raise DemError(f"read_restart: '{path}' is not a dem restart file") from None
-    if not isinstance(state, dict) or state.get("format") != FORMAT:
-        raise DemError(f"read_restart: '{path}' is not a dem restart file")
+    state = load(path)
     if sim.domain.box_exist:
         raise DemError("read_restart: the box already exists (read_restart creates it)")
     dom, atom, up, nb = sim.domain, sim.atom, sim.update, sim.neighbor
