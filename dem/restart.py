@@ -39,8 +39,7 @@ def write_restart(sim, path):
         "pair": sim.pair.state() if sim.pair is not None else {},
         "shapes": [list(w) for w in sim.shapes.definitions],
     }
-    if sim.comm.nprocs > 1:
-        state = sim.comm.gather_restart(state)
+    state = sim.comm.gather_restart(state)
     if sim.comm.me == 0:
         tmp = f"{path}.tmp{os.getpid()}"
         try:
@@ -78,11 +77,7 @@ def read_restart(sim, path):
     up.ntimestep, up.time = state["step"], state["time"]
     if up.dt is None:
         up.dt = state["dt"]
-    fields = state["fields"]
-    if sim.comm.nprocs > 1:
-        fields, xhold = sim.comm.scatter_restart(state)
-    else:
-        xhold = state["neighbor"]["xhold"]
+    fields, xhold = sim.comm.scatter_restart(state)
     for name, values in fields.items():
         if name not in atom.fields:
             atom.pending[name] = values

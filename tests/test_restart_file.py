@@ -120,3 +120,26 @@ def test_invalid_state_is_refused(restart, name, change, what):
     _edit(restart, name, change)
     with pytest.raises(DemError, match=f"small.restart.*{what}"):
         dem.Simulation(screen=False).command(f"read_restart {restart}")
+
+
+def test_old_pickle_restart_converts_with_the_tool(restart, tmp_path):
+    """tools/convert_restart.py turns a trusted version-1 pickle into a version-3 file that reads back with
+    the same state (every field bit for bit), and refuses without --trust."""
+    import subprocess
+    import sys
+    from pathlib import Path
+    tool = Path(__file__).resolve().parents[1] / "tools" / "convert_restart.py"
+    state = restart_file.read(restart)
+    old, new = tmp_path / "old.restart", tmp_path / "new.restart"
+    with open(old, "wb") as fh:
+        pickle.dump({**state, "format": "dem-restart-1"}, fh)
+    refused = subprocess.run([sys.executable, str(tool), str(old), str(new)], capture_output=True, text=True)
+    assert refused.returncode != 0 and "--trust" in refused.stderr and not new.exists()
+    subprocess.run([sys.executable, str(tool), str(old), str(new), "--trust"], check=True, capture_output=True)
+    back = restart_file.read(new)
+    assert back["step"] == state["step"] and back["time"] == state["time"]
+    for name, values in state["fields"].items():
+        assert np.array_equal(back["fields"][name], values), name
+    sim = dem.Simulation(screen=False)
+    sim.command(f"read_restart {new}")
+    assert sim.atom.natoms == 64
