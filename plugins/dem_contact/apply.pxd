@@ -48,7 +48,8 @@ cdef inline double apply_law(const double* c, const Contact* k, const Body* a, c
     cdef const double* wb = b.w
     cdef bint wall = b.f == NULL
     cdef int d
-    # relative velocity of a's surface with respect to b's at the contact point
+    # relative velocity of a's surface with respect to b's at the contact point (the central forms: the same
+    # v_a - v_b - (arm_a w_a + arm_b w_b) x n, summed in the order each geometry always used, bit for bit)
     if k.central:
         if wall:
             vr[0] = a.v[0] - k.arm_a * (wa[1] * n[2] - wa[2] * n[1]) - b.v[0]
