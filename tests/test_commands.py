@@ -72,8 +72,8 @@ DATA = """LAMMPS data file via write_data, version 22 Jul 2025, timestep = 30000
 Atoms # sphere
 
 7 1 0.001 2500 0.0005 0.0005 0.0005 0 0 0
-2 2 0.002 1000 0.003 0.002 0.001 0 0 0
-5 1 0.001 2500 0.0015 0.0005 0.0005 0 0 0
+2 2 0.002 1000 0.003 0.002 0.001 1 -2 0
+5 1 0.001 2500 0.0015 0.0005 0.0005 0 3 0
 
 Velocities
 
@@ -84,30 +84,47 @@ Velocities
 
 
 def test_read_data_of_a_lammps_sphere_file(tmp_path):
-    """The format of LAMMPS write_data for atom_style sphere (the benchmark beds are written so)."""
+    """The format of LAMMPS write_data for atom_style sphere (the benchmark beds are written so):
+    `id type diameter density x y z ix iy iz`. Every column is checked against the file, by id (the
+    values are copied, not computed: exact), with distinct x, y and z so that a swap of columns shows,
+    types not all equal, and non-zero image flags (periodic x and y: a particle that crossed them)."""
     path = tmp_path / "bed.data"
     path.write_text(DATA)
-    sim = make(f"units si\nboundary f f fm\nread_data {path}\n")
+    sim = make(f"units si\nboundary p p fm\nread_data {path}\n")
     assert sim.atom.natoms == 3 and sim.atom.ntypes == 2
     assert sim.domain.lo.tolist() == [0, 0, 0] and sim.domain.hi.tolist() == [0.02, 0.02, 0.044]
     assert sim.gather("tag").tolist() == [2, 5, 7]
+    assert sim.gather("type").tolist() == [2, 1, 1]
+    assert sim.gather("x").tolist() == [[0.003, 0.002, 0.001], [0.0015, 0.0005, 0.0005],
+                                        [0.0005, 0.0005, 0.0005]]
+    assert sim.gather("image").tolist() == [[1, -2, 0], [0, 3, 0], [0, 0, 0]]
     assert sim.gather("radius").tolist() == [0.001, 0.0005, 0.0005]
+    # mass = density * 4/3 pi r^3: one product of floats, to round-off
     assert sim.gather("rmass")[0] == pytest.approx(1000 * 4 / 3 * math.pi * 0.001 ** 3, rel=1e-14)
+    assert sim.gather("rmass")[1] == pytest.approx(2500 * 4 / 3 * math.pi * 0.0005 ** 3, rel=1e-14)
     assert sim.gather("v")[0].tolist() == [0.1, 0.2, 0.3] and sim.gather("omega")[0].tolist() == [1, 2, 3]
     assert sim.gather("v")[2].tolist() == [0, 0, -1]
 
 
 def test_thermo_keywords_and_run_zero():
+    """`contacts` and `cn` counted exactly on a lattice. Spheres on a simple cubic lattice (spacing
+    1 mm, 10 x 10 x 20 sites, periodic in x and y, not in z), radius set to 0.51 mm after creation so that
+    every lattice neighbour overlaps by 0.02 mm (2 % of a diameter, well above round-off and well below
+    the 0.2 overlap limit; touching spheres would have zero overlap, counted or not by round-off).
+    Contacts: 10*10*20 along x + 10*10*20 along y (periodic: every site has its +x and +y neighbour) +
+    10*10*19 along z = 5900; cn = 2 * contacts / atoms = 2 * 5900 / 2000 = 5.9 (each contact touches
+    two particles). Both are integer counts over a ratio of integers: exact."""
     sim = make(BOX + "create_atoms 1 lattice box sc 0.001 radius 0.0005 density 1000\n"
+                     "set group all radius 0.00051\n"
                      "pair_style sphere\npair_coeff * * kn 100 en 0.5\n"
                      "fix nve all nve/sphere\ntimestep 1e-6\nthermo_style custom step atoms contacts cn\n"
                      "run 0\n")
-    # touching spheres on a simple cubic lattice: 6 neighbours each (z faces: 5 on the first and last
-    # layer); a touching pair has zero overlap, so count the listed pairs at distance 2r instead
     assert sim.thermo_keyword("atoms") == 2000
+    assert sim.thermo_keyword("contacts") == 10 * 10 * 20 * 2 + 10 * 10 * 19
+    assert sim.thermo_keyword("cn") == 2.0 * 5900 / 2000          # 5.9: one division, exact
     assert sim.thermo_keyword("step") == 0
     assert sim.thermo_keyword("xhi") == 0.01 and sim.thermo_keyword("vol") == pytest.approx(2e-6)
-    with pytest.raises(dem.DemError, match="unknown thermo keyword"):
+    with pytest.raises(dem.DemError, match="unknown thermo keyword 'nope'"):
         sim.thermo_keyword("nope")
 
 

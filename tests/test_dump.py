@@ -7,10 +7,9 @@ import types
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+import h5py
 import numpy as np
 import pytest
-
-h5py = pytest.importorskip("h5py")
 
 
 def _load(name):
@@ -236,9 +235,9 @@ def test_h5_fields_keyword_and_reopen_after_close(tmp_path):
 
 def test_h5_bad_names(tmp_path):
     sim = FakeSim()
-    with pytest.raises(DemError, match=r"no '\*'"):
+    with pytest.raises(DemError, match=r"writes all frames into one file: no '\*' in its name"):
         DumpH5(sim, "d1", "all", 10, str(tmp_path / "a_*.h5"), [])
-    with pytest.raises(DemError, match="unknown group"):
+    with pytest.raises(DemError, match="unknown group 'nogroup'"):
         DumpH5(sim, "d1", "nogroup", 10, str(tmp_path / "a.h5"), [])
 
 
@@ -262,18 +261,18 @@ def test_unknown_keyword_and_field(tmp_path, cls, name):
         cls(sim, "d1", "all", 10, str(tmp_path / name), ["feilds", "id"])
     with pytest.raises(DemError, match="unknown field 'radus'.*did you mean 'radius'"):
         cls(sim, "d1", "all", 10, str(tmp_path / name), ["fields", "radus"])
-    with pytest.raises(DemError, match="at least one"):
+    with pytest.raises(DemError, match="'fields' needs at least one name among id, type, position"):
         cls(sim, "d1", "all", 10, str(tmp_path / name), ["fields"])
     assert list(tmp_path.iterdir()) == []
 
 
 def test_vtk_keywords(tmp_path):
     sim = FakeSim()
-    with pytest.raises(DemError, match="binary or ascii"):
+    with pytest.raises(DemError, match="format must be binary or ascii, got 'hex'"):
         DumpVTK(sim, "d1", "all", 10, str(tmp_path / "a_*.vtu"), ["format", "hex"])
-    with pytest.raises(DemError, match="needs 1 value"):
+    with pytest.raises(DemError, match=r"keyword 'format' needs 1 value\(s\)"):
         DumpVTK(sim, "d1", "all", 10, str(tmp_path / "a_*.vtu"), ["format"])
-    with pytest.raises(DemError, match=r"\.vtu"):
+    with pytest.raises(DemError, match=r"the file name must end in \.vtu \('.*a_\*\.vtk'\)"):
         DumpVTK(sim, "d1", "all", 10, str(tmp_path / "a_*.vtk"), [])
     d = DumpVTK(sim, "d1", "all", 10, str(tmp_path / "a_*.vtu"),
                 ["fields", "radius", "format", "ascii", "pvd", str(tmp_path / "c.pvd")])

@@ -186,11 +186,11 @@ def test_restart_continues_the_same_stream(tmp_path):
 
 
 def test_errors():
-    with pytest.raises(DemError, match="count N"):
+    with pytest.raises(DemError, match="give exactly one of 'count N' or 'volfrac PHI'"):
         _sim("fix ins all insert 1 box radius 0.001", steps=0)
-    with pytest.raises(DemError, match="unknown keyword"):
+    with pytest.raises(DemError, match=r"insert: unknown keyword 'raduis' \(did you mean 'radius'\?\)"):
         _sim("fix ins all insert 1 box count 3 raduis 0.001", steps=0)
-    with pytest.raises(DemError, match="region"):
+    with pytest.raises(DemError, match="unknown region ID 'nowhere'"):
         _sim("fix ins all insert 1 nowhere count 3", steps=0)
 
 

@@ -13,10 +13,9 @@ import subprocess
 import sys
 from pathlib import Path
 
+import h5py
 import numpy as np
 import pytest
-
-h5py = pytest.importorskip("h5py")
 
 
 def _mpiexec():
@@ -229,6 +228,39 @@ def test_error_on_one_rank_aborts_the_job(tmp_path):
                          capture_output=True, text=True, timeout=60)
     assert res.returncode != 0
     assert "boom on rank 1" in res.stderr
+
+
+ONE_RANK_ERROR = """
+units           si
+boundary        f f f
+region          box block 0 0.008 0 0.004 0 0.004
+create_box      1 box
+create_atoms    1 lattice box sc 0.001 radius 0.0004 density 2500
+pair_style      sphere
+pair_coeff      * * kn 2000 en 0.5
+fix             integrate all nve/sphere
+timestep        1e-6
+thermo          0
+run             10
+write_restart   no_such_folder/bed.restart
+run             100000
+"""
+
+
+def test_error_on_one_rank_only_aborts_the_job(tmp_path):
+    """A DemError that only one rank sees, on a user path: write_restart into a folder that does not
+    exist fails on rank 0 (rank 0 alone writes the file), while rank 1 goes on to the next `run` and waits
+    in its first collective. comm.fatal on rank 0 reports the error and, the other rank not joining it
+    within ERROR_WAIT (5 s), aborts the job: a non-zero exit status and the message, never a hang.
+    Timeout 90 s: the job takes ~5 s plus start-up (2 x Python + mpi4py, a few s, more on a loaded
+    machine); a job that does not abort runs until killed (100000 steps on rank 1 never start)."""
+    try:
+        res = run_dem(tmp_path, ONE_RANK_ERROR, 2, "log.e", timeout=90, check=False)
+    except subprocess.TimeoutExpired:
+        pytest.fail("an error on one rank hung the job (no abort within 90 s)")
+    assert res.returncode != 0
+    assert "in.log.e:13: write_restart: cannot write 'no_such_folder/bed.restart'" in res.stderr, res.stderr
+    assert "the other ranks did not stop with this error: aborting the MPI job" in res.stderr, res.stderr
 
 
 def test_serial_run_does_not_import_mpi4py(tmp_path):

@@ -5,7 +5,9 @@ history) flowing down a tilted gravity against walls that keep their own history
 sort (every 1000 steps) on: by the restart step it has ~50 loaded springs between particles and ~40 against
 the walls, rebuilds every ~100 steps, and (periodic case) particles crossing the periodic faces.
 Compared, bit for bit with np.array_equal: positions, velocities, angular velocities and momenta, image
-counters, the wall histories (per particle) and the pair histories (per pair, by particle ids).
+counters, the wall histories (per particle) and the pair histories (per pair, by particle ids), and the
+step, the time and the time step (the restarted scripts set no `timestep`: dt comes from the restart; time
+is a sum of dt, the same additions in the same order, so it is bitwise equal too).
 """
 import numpy as np
 import pytest
@@ -32,11 +34,15 @@ def state(sim):
     out["pair_history"] = {(int(tag[a]), int(tag[b])): tuple(h[k])
                            for k, (a, b) in enumerate(zip(i, j)) if np.any(h[k])}
     out["step"] = sim.update.ntimestep
+    out["time"] = sim.update.time
+    out["dt"] = sim.update.dt
     return out
 
 
 def assert_identical(a, b):
     assert a["step"] == b["step"]
+    assert a["dt"] == b["dt"], f"dt {b['dt']!r} instead of {a['dt']!r}"
+    assert a["time"] == b["time"], f"time {b['time']!r} instead of {a['time']!r}"
     for name in ("x", "v", "omega", "angmom", "image", "fix_walls_xi"):
         assert np.array_equal(a[name], b[name]), (
             f"{name} differs (max {np.max(np.abs(a[name] - b[name])):.3g})")
@@ -75,6 +81,8 @@ def test_restart_continues_bitwise(reference, tmp_path):
     sim.command(f"write_restart {path}")
     new = restarted(case, path)
     assert new.update.ntimestep == N
+    assert new.update.dt == at_restart["dt"] == 1.5e-6
+    assert new.update.time == at_restart["time"] > 0.0
     new.run(N)
     assert_identical(ref, state(new))
     # and the writer itself continues unchanged after writing
@@ -123,8 +131,10 @@ def test_restart_with_grown_history_store(tmp_path):
     new = dem.Simulation(screen=False)
     new.command(f"read_restart {tmp_path / 'shell.restart'}")
     new.commands("thermo 0\n" + SHELL_FORCES)
+    assert new.update.dt == 1e-4 and new.update.time == sim.update.time
     new.run(10)
     s = state(new)
+    assert s["time"] == ref_state["time"] and s["dt"] == ref_state["dt"]
     assert len([p for p in s["pair_history"] if p[0] == 1]) == 20
     for name in ("x", "v", "omega"):
         assert np.array_equal(ref_state[name], s[name]), name
