@@ -4,9 +4,10 @@ style and wall: the relative velocity of the two surfaces at the contact point, 
 (law.pxd) with its tangential history, the force on both bodies, the torques about both centres of mass,
 optional rolling resistance, all times the record's weight.
 
-A Body is one side of a contact. A wall is a Body with `f == NULL`: `v` is then the wall's velocity at the
-contact point and `w` its spin (for rolling resistance); it takes no force. Rolling resistance acts when
-reff > 0 (spheres: R_eff; Grains3D applies none to shaped bodies)."""
+A Body is one side of a contact. Pair styles call apply_pair, walls apply_wall, where the wall is the Body
+b: `v` is its velocity at the contact point and `w` its spin (for rolling resistance); it takes no force
+(its x, f, t are not read). Both are one function, _apply, whose `wall` flag is a constant at each call.
+Rolling resistance acts when reff > 0 (spheres: R_eff; Grains3D applies none to shaped bodies)."""
 from dem._math cimport cross3
 from dem.contact.record cimport Contact
 from dem_contact.law cimport hooke, rolling_torque
@@ -16,7 +17,7 @@ cdef struct Body:
     const double* x     # centre of mass (unused for a wall)
     const double* v     # velocity of the centre (a wall: its velocity at the contact point)
     const double* w     # angular velocity (a wall: its spin)
-    double* f           # force and torque sums, NULL for a wall
+    double* f           # force and torque sums (unused for a wall)
     double* t
 
 
@@ -27,11 +28,23 @@ cdef inline void _point_velocity(const Body* b, const double* l, double* u) noex
     u[2] = b.v[2] + b.w[0] * l[1] - b.w[1] * l[0]
 
 
-cdef inline double apply_law(const double* c, const Contact* k, const Body* a, const Body* b, double meff,
-                             double reff, double* xi, double dt, bint advance, double* out) noexcept nogil:
-    """The law at contact k between a and b with reduced mass meff (a wall: a's mass) and coefficient row c.
-    Adds the force to a (minus it to b) and the torques about both centres; out receives the force on a
-    (0-2) and the rolling torque on a (3-5, zero if none). Returns the elastic energy (times the weight)."""
+cdef inline double apply_pair(const double* c, const Contact* k, const Body* a, const Body* b, double meff,
+                              double reff, double* xi, double dt, bint advance, double* out) noexcept nogil:
+    """The law at contact k between bodies a and b (reduced mass meff, coefficient row c): adds the force to
+    a and minus it to b, and the torques about both centres; out receives the force on a (0-2) and the
+    rolling torque on a (3-5, zero if none). Returns the elastic energy (times the weight)."""
+    return _apply(c, k, a, b, meff, reff, xi, dt, advance, out, False)
+
+
+cdef inline double apply_wall(const double* c, const Contact* k, const Body* a, const Body* wall, double m,
+                              double reff, double* xi, double dt, bint advance, double* out) noexcept nogil:
+    """apply_pair against a wall (m_ij = m, a's mass): only a takes the force and the torque."""
+    return _apply(c, k, a, wall, m, reff, xi, dt, advance, out, True)
+
+
+cdef inline double _apply(const double* c, const Contact* k, const Body* a, const Body* b, double meff,
+                          double reff, double* xi, double dt, bint advance, double* out,
+                          bint wall) noexcept nogil:
     cdef double vr[3]
     cdef double ua[3]
     cdef double ub[3]
@@ -46,7 +59,6 @@ cdef inline double apply_law(const double* c, const Contact* k, const Body* a, c
     cdef const double* n = k.n
     cdef const double* wa = a.w
     cdef const double* wb = b.w
-    cdef bint wall = b.f == NULL
     cdef int d
     # relative velocity of a's surface with respect to b's at the contact point (the central forms: the same
     # v_a - v_b - (arm_a w_a + arm_b w_b) x n, summed in the order each geometry always used, bit for bit)

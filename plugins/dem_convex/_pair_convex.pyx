@@ -28,7 +28,7 @@ from dem.contact._gjk cimport crust_contact, CONTACT_NONE, CONTACT_CRUST, NFEAT
 from dem.shapes._support cimport (ShapeRef, Kind, quat_to_rot, support_world, polytope_core, box_corners,
                                   corner_box, MARGIN, NPARAM, NCORNER)
 from dem.shapes._table cimport ShapeView, TableView, core_ref, round_body
-from dem_contact.apply cimport Body, apply_law
+from dem_contact.apply cimport Body, apply_pair
 from dem_contact.law cimport XI_WIDTH, forget
 
 ctypedef cnp.int64_t i64
@@ -365,7 +365,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
             B.f = &P.f[3 * j]
             B.t = &P.torque[3 * j]
             # rolling resistance between spheres only (as pair sphere); none for shaped bodies (Part III)
-            energy += apply_law(&coeff[P.type[i], P.type[j], 0], &con, &A, &B, meff,
+            energy += apply_pair(&coeff[P.type[i], P.type[j], 0], &con, &A, &B, meff,
                                 P.radius[i] * P.radius[j] / rsum if sph_i and sph_j else 0.0,
                                 &hist[k, 0] if use_xi else NULL, dt, advance, out)
     stats[0] = ncont

@@ -5,7 +5,7 @@ cimport numpy as cnp
 from libc.math cimport sqrt
 from dem._particles cimport ParticleView, Particles
 from dem.contact.record cimport Contact
-from dem_contact.apply cimport Body, apply_law
+from dem_contact.apply cimport Body, apply_pair
 from dem_contact.law cimport forget
 
 ctypedef cnp.int64_t i64
@@ -64,7 +64,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 B.w = &P.omega[3 * j]
                 B.f = &P.f[3 * j]
                 B.t = &P.torque[3 * j]
-                energy += apply_law(&coeff[P.type[i], P.type[j], 0], &con, &A, &B, meff,
+                energy += apply_pair(&coeff[P.type[i], P.type[j], 0], &con, &A, &B, meff,
                                     P.radius[i] * P.radius[j] / rsum, &xi[k, 0] if use_history else NULL,
                                     dt, advance, out)
     stats[0] = ncont

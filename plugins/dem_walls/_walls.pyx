@@ -15,7 +15,7 @@ from dem.contact._surface cimport (Surface, S_CYLINDER, S_A, S_SIDE, S_POS, S_R,
                                    cylinder_touch)
 from dem.shapes._support cimport ShapeRef
 from dem.shapes._table cimport ShapeView, TableView, pose_body, round_body
-from dem_contact.apply cimport Body, apply_law
+from dem_contact.apply cimport Body, apply_wall
 from dem_contact.law cimport XI_WIDTH, forget
 
 ctypedef cnp.int64_t i64
@@ -83,9 +83,6 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
     con.key = 0
     con.weight = 1.0
     con.arm_b = 0.0
-    B.x = NULL
-    B.f = NULL
-    B.t = NULL
     with nogil:
         for i in range(P.nlocal):
             if not (P.mask[i] & groupbit):
@@ -94,11 +91,6 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
             s = P.shape[i]
             sphere = round_body(T, s)
             posed = False
-            A.x = x
-            A.v = &P.v[3 * i]
-            A.w = &P.omega[3 * i]
-            A.f = &P.f[3 * i]
-            A.t = &P.torque[3 * i]
             for w in range(nw):
                 W = &surf[w]
                 gap = bound_gap(W, x, &rho)
@@ -136,8 +128,13 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
                 else:
                     B.v = ZERO
                     B.w = ZERO
+                A.x = x
+                A.v = &P.v[3 * i]
+                A.w = &P.omega[3 * i]
+                A.f = &P.f[3 * i]
+                A.t = &P.torque[3 * i]
                 c = &coeff[w, P.type[i], 0]
-                energy += apply_law(c, &con, &A, &B, P.rmass[i], P.radius[i] if sphere else 0.0,
+                energy += apply_wall(c, &con, &A, &B, P.rmass[i], P.radius[i] if sphere else 0.0,
                                     &xi[i, XI_WIDTH * w] if use_history else NULL, dt, advance, out)
                 if W.spin >= 0:       # torque about the turning axis: e . (p x F) + e . rolling torque
                     torque += p[(W.spin + 1) % 3] * out[(W.spin + 2) % 3] - p[(W.spin + 2) % 3] * out[(W.spin + 1) % 3]
