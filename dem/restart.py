@@ -55,7 +55,7 @@ def read_restart(sim, path):
             state = pickle.load(fh)
     except OSError as e:
         raise DemError(f"read_restart: cannot open '{path}': {e.strerror}") from None
-    except (pickle.UnpicklingError, EOFError, AttributeError):
+    except Exception:       # a foreign file (LAMMPS restart, HDF5, npy ...) fails in many ways
         raise DemError(f"read_restart: '{path}' is not a dem restart file") from None
     if not isinstance(state, dict) or state.get("format") != FORMAT:
         raise DemError(f"read_restart: '{path}' is not a dem restart file")
@@ -147,6 +147,7 @@ class Restart(Command):
         a.need(1)
         out = self.sim.output
         out.restart_every = a.int(0, "N", nonneg=True)
+        a.done(3)
         if out.restart_every:
             a.need(2)
             out.restart_files = a.words[1:3]
