@@ -28,6 +28,7 @@ class Update:
         self.last_step = 0
         self.beginstep = self.endstep = 0   # `run ... start S stop S`: the span of a run sequence
         self.ran = False                    # a run happened: `run ... pre no` may then skip setup output
+        self.in_run = False                 # inside `run ... every`: its commands may not start a run
         self.running = False
         self.timers = dict.fromkeys(TIMERS, 0.0)
         self.wall_start = None

@@ -79,7 +79,7 @@ class Run(Command):
         a.need(1)
         sim = self.sim
         update = sim.update
-        if update.running or getattr(update, "in_run", False):
+        if update.running or update.in_run:
             raise a.error("a run cannot be started from inside a run (e.g. from its 'every' commands)")
         n = a.int(0, "N", nonneg=True)
         upto, start, stop, pre, post, every, commands = False, None, None, True, True, 0, []
