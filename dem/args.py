@@ -1,6 +1,41 @@
 """Argument parsing for commands and styles: numbers with the command's usage in every error message,
 and `keyword value ...` tails with suggestions for misspelt keywords."""
+import math
+
 from .errors import DemError, did_you_mean
+
+# an integer input larger than this is a typo or an overflow, never a count dem could hold
+MAX_INT = 2 ** 63 - 1
+
+
+def number(word):
+    """float(word) for a finite value only: nan and inf are refused (as LAMMPS does), since none of
+    them is a usable coefficient, bound or count. ValueError otherwise."""
+    value = float(word)
+    if not math.isfinite(value):
+        raise ValueError(f"non-finite number '{word}'")
+    return value
+
+
+def integer(word):
+    """int(word), also for an integral float such as 1e5; ValueError for anything else (1.7, nan, inf)."""
+    try:
+        return int(word)
+    except ValueError:
+        pass
+    value = number(word)
+    if value != int(value) or abs(value) > MAX_INT:
+        raise ValueError(f"not an integer '{word}'")
+    return int(value)
+
+
+def float_error(word, name):
+    """The message for a word that is not a finite number."""
+    try:
+        float(word)
+    except ValueError:
+        return f"{name} must be a number, got '{word}'"
+    return f"{name} must be a finite number, got '{word}'"
 
 
 class Args:
@@ -30,11 +65,8 @@ class Args:
             raise self.error("missing argument") from None
 
     def float(self, i, name="value", positive=False, nonneg=False):
+        value = self.to_float(self[i], name)
         word = self[i]
-        try:
-            value = float(word)
-        except ValueError:
-            raise self.error(f"{name} must be a number, got '{word}'") from None
         if positive and not value > 0:
             raise self.error(f"{name} must be > 0, got {word}")
         if nonneg and value < 0:
@@ -43,16 +75,7 @@ class Args:
 
     def int(self, i, name="value", positive=False, nonneg=False):
         word = self[i]
-        try:
-            value = int(word)
-        except ValueError:
-            try:
-                f = float(word)
-            except ValueError:
-                f = None
-            if f is None or f != int(f):
-                raise self.error(f"{name} must be an integer, got '{word}'") from None
-            value = int(f)
+        value = self.to_int(word, name)
         if positive and value <= 0:
             raise self.error(f"{name} must be > 0, got {word}")
         if nonneg and value < 0:
@@ -80,15 +103,20 @@ class Args:
 
     def to_float(self, word, name):
         try:
-            return float(word)
+            return number(word)
         except ValueError:
-            raise self.error(f"{name} must be a number, got '{word}'") from None
+            raise self.error(float_error(word, name)) from None
 
     def to_int(self, word, name):
         try:
-            return int(word)
+            return integer(word)
         except ValueError:
             raise self.error(f"{name} must be an integer, got '{word}'") from None
+
+    def done(self, used):
+        """Refuse words after the first `used` ones: a word dem does not read is an error, never ignored."""
+        if len(self.words) > used:
+            raise self.error(f"unexpected argument(s) '{' '.join(self.words[used:])}'")
 
     def yes_no(self, word, name):
         if word in ("yes", "on", "1"):
@@ -102,8 +130,11 @@ def parse_types(word, ntypes, what="type"):
     """LAMMPS type ranges: '*', '2', '2*', '*3', '1*4'. Returns a list of ints."""
     if "*" in word:
         lo, hi = word.split("*", 1)
-        lo = int(lo) if lo else 1
-        hi = int(hi) if hi else ntypes
+        try:
+            lo = int(lo) if lo else 1
+            hi = int(hi) if hi else ntypes
+        except ValueError:
+            raise DemError(f"bad {what} '{word}': use N, N*, *N, N*M or *") from None
     else:
         try:
             lo = hi = int(word)

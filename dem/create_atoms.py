@@ -9,6 +9,10 @@ from .commands import find_region
 from .errors import DemError
 
 
+# more particles than this in one create_atoms is a typo (1e13 would exhaust any memory before failing)
+MAX_CREATE = 10 ** 9
+
+
 def sphere_mass(radius, density):
     return density * 4.0 / 3.0 * math.pi * np.asarray(radius, dtype=float) ** 3
 
@@ -58,6 +62,13 @@ def _radius_words(a, start):
     return kw
 
 
+def _seed(a, kw):
+    seed = a.to_int(kw["seed"][0], "seed") if "seed" in kw else 1
+    if seed < 0:
+        raise a.error("seed must be >= 0")
+    return seed
+
+
 def _min_image(d, domain):
     per = domain.periodic
     if per.any():
@@ -97,18 +108,25 @@ class CreateAtoms(Command):
         if how == "single":
             a.need(5)
             kw = _radius_words(a, 5)
-            rng = np.random.default_rng(int(kw.get("seed", ["1"])[0]))
+            rng = np.random.default_rng(_seed(a, kw))
             x = np.array([a.floats(2, 3, "position")])
             radius = self.sizes(a, kw, 1, rng)
         elif how == "random":
             a.need(5)
             n = a.int(2, "N", nonneg=True)
+            if n > MAX_CREATE:
+                raise a.error(f"N = {a[2]} particles is more than dem can create at once ({MAX_CREATE:.0e})")
             seed = a.int(3, "seed", positive=True)
             region = find_region(sim, a[4])
             kw = _radius_words(a, 5)
+            if "seed" in kw:        # it would be ignored: SEED above drives positions and orientations
+                raise a.error("random takes its seed as SEED (create_atoms T random N SEED REGION), "
+                              "not as a 'seed' keyword")
             rng = np.random.default_rng(seed)
             radius = self.sizes(a, kw, n, rng)
-            attempts = int(kw.get("attempts", ["1000"])[0])
+            attempts = a.to_int(kw["attempts"][0], "attempts") if "attempts" in kw else 1000
+            if attempts < 1:
+                raise a.error("attempts must be >= 1")
             x = self.random_fill(region, radius, rng, attempts)
         elif how == "lattice":
             a.need(4)
@@ -117,13 +135,13 @@ class CreateAtoms(Command):
             spacing = a.float(4, "spacing", positive=True)
             kw = _radius_words(a, 5)
             x = self.lattice(region, kind, spacing)
-            rng = np.random.default_rng(int(kw.get("seed", ["1"])[0]))
+            rng = np.random.default_rng(_seed(a, kw))
             radius = self.sizes(a, kw, len(x), rng)
             if np.any(2 * radius > spacing * (1.0 if kind == "sc" else 0.866 if kind == "bcc" else 0.7071) + 1e-12):
                 raise a.error("particles of this radius overlap on this lattice")
         else:
             raise a.error(f"unknown create_atoms style '{how}' (single, random or lattice)")
-        density = float(kw.get("density", ["1.0"])[0])
+        density = a.to_float(kw["density"][0], "density") if "density" in kw else 1.0
         if density <= 0:
             raise a.error("density must be > 0")
         outside = ~sim.domain.inside(x)
@@ -249,6 +267,10 @@ class CreateAtoms(Command):
         hi = np.minimum(hi, self.sim.domain.hi)
         i0 = np.floor((lo - self.sim.domain.lo) / a).astype(int)
         i1 = np.ceil((hi - self.sim.domain.lo) / a).astype(int)
+        count = int(np.prod(np.maximum(i1 - i0 + 1, 0))) * len(basis[kind])
+        if count > MAX_CREATE:
+            raise DemError(f"create_atoms lattice: spacing {a:g} gives {count:.3g} lattice sites in region "
+                           f"{region.id}, more than dem can create at once ({MAX_CREATE:.0e})")
         grid = np.stack(np.meshgrid(*[np.arange(i0[d], i1[d] + 1) for d in range(3)], indexing="ij"), -1)
         grid = grid.reshape(-1, 3)
         pts = [(grid + np.array(b) + 0.5) * a + self.sim.domain.lo for b in basis[kind]]
@@ -367,7 +389,7 @@ class SetCommand(Command):
                 d["rmass"][:n][sel] = f[0]
                 d["inertia"][:n][sel] *= scale[:, None]
             elif key == "type":
-                t = int(f[0])
+                t = a.to_int(vals[0], "type")
                 if not 1 <= t <= atom.ntypes:
                     raise a.error(f"type {t} out of range 1..{atom.ntypes}")
                 d["type"][:n][sel] = t

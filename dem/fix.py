@@ -65,6 +65,11 @@ class Fix:
     def particles_removed(self):
         pass
 
+    def no_args(self):
+        """For a style without arguments: any word after the style is an error, never ignored."""
+        if self.args:
+            raise DemError(f"fix {self.id} {self.style}: takes no arguments, got '{' '.join(self.args)}'")
+
     def need(self, n, usage):
         if len(self.args) < n:
             raise DemError(f"fix {self.style}: too few arguments; usage: fix ID group {self.style} {usage}")

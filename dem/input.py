@@ -258,6 +258,10 @@ class Input:
             if err.where is None:
                 err.where = self.location
             raise
+        except MemoryError:     # a size no check caught: still a clear error at the line that asked for it
+            err = DemError("not enough memory for this command (is a count or a size far too large?)")
+            err.where = self.location
+            raise err from None
 
     def _dispatch(self, word, args):
         own = self._own.get(word)

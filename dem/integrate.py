@@ -14,6 +14,10 @@ class FixNVESphere(Fix):
     stages = Stage.INTEGRATE
     time_integrate = True
 
+    def __init__(self, sim, fid, group, args):
+        super().__init__(sim, fid, group, args)
+        self.no_args()
+
     def integrate(self):
         sim = self.sim
         a = sim.atom.data
@@ -32,6 +36,10 @@ class FixNVEShape(Fix):
     style = "nve/shape"
     stages = Stage.INTEGRATE
     time_integrate = True
+
+    def __init__(self, sim, fid, group, args):
+        super().__init__(sim, fid, group, args)
+        self.no_args()
 
     def setup(self):
         a = self.sim.atom.data

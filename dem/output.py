@@ -39,14 +39,15 @@ class Output:
         self.dumps.pop(did).close()
 
     # ----- during a run ---------------------------------------------------------------------------
-    def setup(self):
+    def setup(self, thermo=True):
         step = self.sim.update.ntimestep
-        thermo = self.thermo
-        thermo.header()
-        thermo.line()
-        self.last_thermo = step
+        if thermo:
+            self.thermo.header()
+            self.thermo.line()
+            self.last_thermo = step
         for dump in self.dumps.values():
-            if step % dump.every == 0:
+            # a run continuing the last one (run every, run after run) writes no frame twice
+            if step % dump.every == 0 and dump.last_step != step:
                 dump.write(step)
 
     def step(self, step):
@@ -74,7 +75,7 @@ class Output:
             except Exception:      # never mask the original error
                 pass
 
-    def finish(self, nsteps, loop, total):
+    def finish(self, nsteps, loop, total, full=True):
         sim = self.sim
         natoms = sim.atom.natoms
         up = sim.update
@@ -85,6 +86,10 @@ class Output:
             return
         sim.print(f"Loop time of {loop:.4g} on {sim.comm.nprocs} procs for {nsteps} steps with {natoms} "
                   f"particles")
+        if not full:        # run ... post no
+            for dump in self.dumps.values():
+                dump.flush()
+            return
         if loop > 0 and nsteps:
             sim.print(f"Performance: {nsteps / loop:.4g} steps/s, {nsteps * natoms / loop:.4g} particle-steps/s")
         sim.print("")

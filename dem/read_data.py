@@ -1,11 +1,19 @@
 """read_data: LAMMPS data files of spheres (atom_style sphere), so LAMMPS/LIGGGHTS set-ups load as
-they are."""
+they are. The whole file is read and checked before anything changes: a bad file leaves no box and no
+particles behind."""
+import math
+
 import numpy as np
 
+from .args import integer, number
 from .command import Command
+from .commands.box import MAX_TYPES
 from .errors import DemError
 
 HEADER_KEYS = {"atoms": "natoms", "atom types": "ntypes"}
+# sections dem reads; any other (Bonds, Angles, Pair Coeffs ...) is refused rather than skipped
+SECTIONS = ("Atoms", "Velocities", "Masses")
+ATOM_COLUMNS = (7, 10)      # id type diameter density x y z [ix iy iz]
 
 
 class ReadData(Command):
@@ -13,95 +21,177 @@ class ReadData(Command):
 
     Reads a LAMMPS data file with `atom_style sphere` lines (`id type diameter density x y z [ix iy iz]`)
     and an optional `Velocities` section (`id vx vy vz wx wy wz`). The box comes from the header
-    (`xlo xhi` ...); set `boundary` before. Example: `read_data bed_8000.data`."""
+    (`xlo xhi` ...); set `boundary` before. Example: `read_data bed_8000.data`.
+    Every value is checked: ids unique positive integers, types integers in 1..ntypes, diameters and
+    densities finite and > 0, one Velocities line per listed id at most. An `Atoms # STYLE` comment
+    other than sphere, a section other than Atoms, Velocities and Masses (ignored: masses come from
+    diameter and density) or a text that is not UTF-8 is an error."""
     style = "read_data"
     usage = "file"
 
     def __call__(self, words):
         a = self.args(words)
-        a.need(1)
+        a.exactly(1)
         sim = self.sim
         if sim.domain.box_exist:
             raise a.error("the box already exists (read_data creates it)")
         path = a[0]
         try:
-            with open(path) as fh:
+            with open(path, encoding="utf-8") as fh:
                 lines = fh.read().splitlines()
         except OSError as e:
             raise DemError(f"read_data: cannot open '{path}': {e.strerror}") from None
-        header, sections = self.parse(path, lines)
-        lo = [header.get(f"{d}lo", 0.0) for d in "xyz"]
-        hi = [header.get(f"{d}hi", 1.0) for d in "xyz"]
-        sim.domain.set_box(lo, hi)
-        sim.atom.ntypes = int(header.get("ntypes", 1))
-        if "Atoms" not in sections:
-            raise DemError(f"read_data {path}: no Atoms section")
-        rows = sections["Atoms"]
-        natoms = int(header.get("natoms", len(rows)))
-        if len(rows) != natoms:
-            raise DemError(f"read_data {path}: header says {natoms} atoms, Atoms section has {len(rows)}")
-        try:
-            data = np.array([[float(w) for w in r[:10]] + [0.0] * (10 - len(r[:10])) for r in rows])
-        except ValueError as e:
-            raise DemError(f"read_data {path}: bad number in Atoms section ({e})") from None
-        if data.shape[1] < 7 or any(len(r) < 7 for r in rows):
-            raise DemError(f"read_data {path}: Atoms lines need 'id type diameter density x y z' (sphere)")
-        tags = data[:, 0].astype(np.int64)
-        radius = 0.5 * data[:, 2]
-        if np.any(radius <= 0):
-            raise DemError(f"read_data {path}: diameters must be > 0 (point particles are not supported)")
-        rmass = data[:, 3] * 4.0 / 3.0 * np.pi * radius ** 3
-        types = data[:, 1].astype(np.int64)
-        if np.any(types < 1) or np.any(types > sim.atom.ntypes):
-            raise DemError(f"read_data {path}: particle type out of range 1..{sim.atom.ntypes}")
-        v, omega = np.zeros((len(tags), 3)), np.zeros((len(tags), 3))
-        if "Velocities" in sections:
-            vel = np.array([[float(w) for w in r[:7]] for r in sections["Velocities"]])
-            index = {t: k for k, t in enumerate(tags)}
-            for row in vel:
-                k = index.get(int(row[0]))
-                if k is None:
-                    raise DemError(f"read_data {path}: velocity for unknown atom id {int(row[0])}")
-                v[k] = row[1:4]
-                omega[k] = row[4:7]
-        mine = sim.comm.owned_mask(data[:, 4:7])     # every rank reads the file and keeps its sub-box
-        sim.atom.add(data[mine, 4:7], radius[mine], rmass[mine], data[mine, 1].astype(np.int32),
-                     tags=tags[mine], image=data[mine, 7:10].astype(np.int32), v=v[mine], omega=omega[mine])
+        except UnicodeDecodeError:
+            raise DemError(f"read_data: '{path}' is not a text (UTF-8) data file") from None
+        d = DataFile(path, lines)
+        atoms = d.atoms()
+        v, omega = d.velocities(atoms["tags"])
+        if "Masses" in d.sections:
+            sim.warning(f"read_data {path}: Masses section ignored (masses come from diameter and density)")
+        # everything checked: now the box and the particles
+        sim.domain.set_box(d.lo, d.hi)
+        sim.atom.ntypes = d.ntypes
+        tags, x = atoms["tags"], atoms["x"]
+        mine = sim.comm.owned_mask(x)     # every rank reads the file and keeps its sub-box
+        sim.atom.add(x[mine], atoms["radius"][mine], atoms["rmass"][mine], atoms["types"][mine],
+                     tags=tags[mine], image=atoms["image"][mine], v=v[mine], omega=omega[mine])
         sim.atom.max_tag = max(sim.atom.max_tag, int(tags.max()) if len(tags) else 0)
         sim.atom.natoms += len(tags)
         sim.neighbor.invalidate()
         sim.print(f"Read {len(tags)} particles from {path}")
 
-    def parse(self, path, lines):
-        header, sections = {}, {}
-        i = 1   # first line is a title
-        current = None
-        while i < len(lines):
-            line = lines[i].split("#")[0].strip()
-            i += 1
-            if not line:
-                continue
-            words = line.split()
-            if words[0][0].isalpha():
-                current = words[0]
-                sections[current] = []
-                continue
-            if current is None:
-                self.header_line(path, i, words, header)
-            else:
-                sections[current].append(words)
-        return header, sections
 
-    def header_line(self, path, lineno, words, header):
+class DataFile:
+    """The header and sections of a data file; every error names `file:line`."""
+
+    def __init__(self, path, lines):
+        self.path = path
+        self.header = {}
+        self.sections = {}      # name -> [(line number, words)]
+        current = None
+        for lineno, raw in enumerate(lines[1:], 2):     # the first line is a title
+            text, _, comment = raw.partition("#")
+            words = text.split()
+            if not words:
+                continue
+            if words[0][0].isalpha():
+                current = " ".join(words)
+                if current not in SECTIONS:
+                    raise self.error(lineno, f"section '{current}' is not supported (atom_style sphere reads "
+                                             f"{', '.join(SECTIONS)})")
+                if current in self.sections:
+                    raise self.error(lineno, f"a second {current} section")
+                style = comment.split()[0] if comment.split() else "sphere"
+                if current == "Atoms" and style != "sphere":
+                    raise self.error(lineno, f"Atoms section of atom_style '{style}': dem reads atom_style "
+                                             f"sphere (id type diameter density x y z)")
+                self.sections[current] = []
+            elif current is None:
+                self.header_line(lineno, words)
+            else:
+                self.sections[current].append((lineno, words))
+        self.lo = [self.header.get(f"{dim}lo", 0.0) for dim in "xyz"]
+        self.hi = [self.header.get(f"{dim}hi", 1.0) for dim in "xyz"]
+        for dim, lo, hi in zip("xyz", self.lo, self.hi):
+            if not lo < hi:
+                raise self.error(None, f"{dim}lo {lo:g} must be below {dim}hi {hi:g}")
+        self.ntypes = self.header.get("ntypes", 1)
+
+    def error(self, lineno, message):
+        where = f"{self.path}:{lineno}" if lineno else self.path
+        return DemError(f"read_data {where}: {message}")
+
+    def header_line(self, lineno, words):
         text = " ".join(words)
         for key, name in HEADER_KEYS.items():
             if text.endswith(key) and len(words) == len(key.split()) + 1:
-                header[name] = int(words[0])
+                value = self.integer(lineno, words[0], key)
+                limit = MAX_TYPES if name == "ntypes" else 10 ** 9
+                if not (1 if name == "ntypes" else 0) <= value <= limit:
+                    raise self.error(lineno, f"'{text}': the number of {key} must be in "
+                                             f"{1 if name == 'ntypes' else 0}..{limit}")
+                self.header[name] = value
                 return
         for d in "xyz":
-            if text.endswith(f"{d}lo {d}hi"):
-                header[f"{d}lo"], header[f"{d}hi"] = float(words[0]), float(words[1])
+            if text.endswith(f"{d}lo {d}hi") and len(words) == 4:
+                self.header[f"{d}lo"] = self.number(lineno, words[0], f"{d}lo")
+                self.header[f"{d}hi"] = self.number(lineno, words[1], f"{d}hi")
                 return
         if text.endswith("xy xz yz"):
-            raise DemError(f"read_data {path}:{lineno}: triclinic boxes are not supported")
-        # other header lines (bonds, angles ...) are irrelevant to granular spheres
+            raise self.error(lineno, "triclinic boxes are not supported")
+        if len(words) >= 2 and not words[-1][0].isalpha():
+            raise self.error(lineno, f"unreadable header line '{text}'")
+        # other counts (bonds, angles, extra ...) do not concern granular spheres
+
+    def number(self, lineno, word, name):
+        try:
+            return number(word)
+        except ValueError:
+            raise self.error(lineno, f"{name} must be a finite number, got '{word}'") from None
+
+    def integer(self, lineno, word, name):
+        try:
+            return integer(word)
+        except ValueError:
+            raise self.error(lineno, f"{name} must be an integer, got '{word}'") from None
+
+    def atoms(self):
+        if "Atoms" not in self.sections and self.header.get("natoms", 1) != 0:
+            raise self.error(None, "no Atoms section")
+        rows = self.sections.get("Atoms", [])
+        if "Atoms" in self.sections and not rows:
+            raise self.error(None, "the Atoms section is empty")
+        natoms = self.header.get("natoms", len(rows))
+        if len(rows) != natoms:
+            raise self.error(None, f"header says {natoms} atoms, the Atoms section has {len(rows)} lines "
+                                   f"(a truncated file?)")
+        n = len(rows)
+        tags, types = np.zeros(n, np.int64), np.zeros(n, np.int32)
+        diameter, density = np.zeros(n), np.zeros(n)
+        x, image = np.zeros((n, 3)), np.zeros((n, 3), np.int32)
+        seen = {}
+        for k, (lineno, words) in enumerate(rows):
+            if len(words) not in ATOM_COLUMNS:
+                raise self.error(lineno, f"an Atoms line of atom_style sphere has 7 or 10 values "
+                                         f"(id type diameter density x y z [ix iy iz]), got {len(words)}")
+            tags[k] = self.integer(lineno, words[0], "atom id")
+            if tags[k] < 1:
+                raise self.error(lineno, f"atom id must be >= 1, got {words[0]}")
+            if tags[k] in seen:
+                raise self.error(lineno, f"atom id {tags[k]} already given on line {seen[tags[k]]}")
+            seen[tags[k]] = lineno
+            types[k] = self.integer(lineno, words[1], "atom type")
+            if not 1 <= types[k] <= self.ntypes:
+                raise self.error(lineno, f"atom type {words[1]} out of range 1..{self.ntypes}")
+            diameter[k] = self.number(lineno, words[2], "diameter")
+            density[k] = self.number(lineno, words[3], "density")
+            if not diameter[k] > 0:
+                raise self.error(lineno, f"diameter must be > 0 (point particles are not supported), "
+                                         f"got {words[2]}")
+            if not density[k] > 0:
+                raise self.error(lineno, f"density must be > 0, got {words[3]}")
+            x[k] = [self.number(lineno, w, "position") for w in words[4:7]]
+            if len(words) == 10:
+                image[k] = [self.integer(lineno, w, "image flag") for w in words[7:10]]
+        radius = 0.5 * diameter
+        return {"tags": tags, "types": types, "radius": radius, "x": x, "image": image,
+                "rmass": density * 4.0 / 3.0 * math.pi * radius ** 3}
+
+    def velocities(self, tags):
+        n = len(tags)
+        v, omega = np.zeros((n, 3)), np.zeros((n, 3))
+        index = {int(t): k for k, t in enumerate(tags)}
+        done = {}
+        for lineno, words in self.sections.get("Velocities", []):
+            if len(words) != 7:
+                raise self.error(lineno, f"a Velocities line has 7 values (id vx vy vz wx wy wz), got "
+                                         f"{len(words)}")
+            tag = self.integer(lineno, words[0], "atom id")
+            if tag not in index:
+                raise self.error(lineno, f"velocity for unknown atom id {tag}")
+            if tag in done:
+                raise self.error(lineno, f"a second velocity for atom id {tag} (first on line {done[tag]})")
+            done[tag] = lineno
+            values = [self.number(lineno, w, "velocity") for w in words[1:7]]
+            v[index[tag]], omega[index[tag]] = values[:3], values[3:]
+        return v, omega

@@ -149,6 +149,7 @@ class Restart(Command):
         a.need(1)
         out = self.sim.output
         out.restart_every = a.int(0, "N", nonneg=True)
+        a.done(3)
         if out.restart_every:
             a.need(2)
             out.restart_files = a.words[1:3]

@@ -1,6 +1,7 @@
 """The root object (rule 1): one Sim owns comm, atom, domain, neighbor, pair, modify, update, output,
 input, registry, the shape table and the computes; every style receives the sim and reaches what it
 needs from it."""
+import os
 import sys
 
 import numpy as np
@@ -33,7 +34,7 @@ class Sim:
         self.registry = registry or default_registry()
         self.comm = comm or make_comm(self)
         self.screen = screen and self.comm.me == 0
-        self.logfile = open(log, "w") if (log and self.comm.me == 0) else None
+        self.logfile = open_log(log) if (log and self.comm.me == 0) else None
         self.atom = Atom()
         self.domain = Domain(self)
         self.groups = Groups(self)
@@ -104,6 +105,17 @@ class Sim:
     def __exit__(self, *exc):
         self.close()
         return False
+
+
+def open_log(path):
+    """The log file, its folder created as dumps do; a clear error when it cannot be written."""
+    folder = os.path.dirname(path)
+    try:
+        if folder:
+            os.makedirs(folder, exist_ok=True)
+        return open(path, "w", encoding="utf-8")
+    except OSError as err:
+        raise DemError(f"cannot write the log file '{path}': {err.strerror}") from None
 
 
 def fatal(sim, error):

@@ -26,6 +26,9 @@ class Update:
         self.time = 0.0
         self.first_step = 0
         self.last_step = 0
+        self.beginstep = self.endstep = 0   # `run ... start S stop S`: the span of a run sequence
+        self.ran = False                    # a run happened: `run ... pre no` may then skip setup output
+        self.in_run = False                 # inside `run ... every`: its commands may not start a run
         self.running = False
         self.timers = dict.fromkeys(TIMERS, 0.0)
         self.wall_start = None
@@ -33,7 +36,7 @@ class Update:
         self.vsync = 0.0   # v + vsync * f / m is the full-step velocity of the last force evaluation
 
     # ----- setup ----------------------------------------------------------------------------------
-    def setup(self):
+    def setup(self, quiet=False):
         sim = self.sim
         sim.domain.require_box("run")
         if self.dt is None:
@@ -50,7 +53,7 @@ class Update:
         self.check_timestep()
         self.force_pass(advance=False)
         self.vsync = 0.5 * self.dt
-        sim.output.setup()
+        sim.output.setup(thermo=not quiet)
 
     def check_timestep(self):
         pair = self.sim.pair
@@ -67,10 +70,13 @@ class Update:
             self.min_contact_time = None
 
     # ----- the loop -------------------------------------------------------------------------------
-    def run(self, nsteps):
+    def run(self, nsteps, pre=True, post=True):
+        """nsteps steps; `pre` False leaves out the setup's thermo header and line when this run continues
+        the previous one, `post` False the end-of-run summary but its loop time line (`run` command)."""
         if nsteps < 0:
             raise DemError("run needs a number of steps >= 0")
         sim = self.sim
+        quiet_setup = not pre and self.ran
         sim.modify.init()
         self.timers = dict.fromkeys(TIMERS, 0.0)
         self.first_step = self.ntimestep
@@ -78,14 +84,15 @@ class Update:
         self.running = True
         t_setup = time.perf_counter()
         try:
-            self.setup()
+            self.setup(quiet=quiet_setup)
+            self.ran = True
             self.wall_start = time.perf_counter()
             for _ in range(nsteps):
                 self.step()
         finally:
             self.running = False
         loop = time.perf_counter() - (self.wall_start or t_setup)
-        sim.output.finish(nsteps, loop, time.perf_counter() - t_setup)
+        sim.output.finish(nsteps, loop, time.perf_counter() - t_setup, full=post)
 
     def step(self):
         sim = self.sim

@@ -36,6 +36,11 @@ _CONSTANTS = {"PI": math.pi, "pi": math.pi, "on": 1.0, "off": 0.0, "true": 1.0, 
               "yes": 1.0, "no": 0.0}
 
 
+# parentheses and unary operators nested deeper than this are refused: the parser and the evaluation
+# recurse once per level, and a clear error beats Python's recursion limit
+MAX_NESTING = 200
+
+
 def _round(x):
     # C round(): halves go away from zero (Python's round() goes to even)
     return math.copysign(math.floor(abs(x) + 0.5), x)
@@ -74,6 +79,7 @@ class _Parser:
         self.strings = strings  # boolean (if-command) mode: unknown bare words are strings
         self.tokens = _tokenize(text)
         self.pos = 0
+        self.depth = 0
 
     def error(self, what):
         return DemError(f"bad expression '{self.text}': {what}")
@@ -104,6 +110,12 @@ class _Parser:
             raise self.error(f"unexpected '{self.tokens[self.pos][1]}'")
         return node
 
+    def nested(self):
+        self.depth += 1
+        if self.depth > MAX_NESTING:
+            raise DemError(f"expression too deeply nested (more than {MAX_NESTING} levels of parentheses or "
+                           f"unary operators): {self.text[:40]}...")
+
     def binary(self, min_level):
         left = self.unary()
         while True:
@@ -118,7 +130,9 @@ class _Parser:
         kind, op = self.peek()
         if kind == "op" and op in ("-", "!", "+"):
             self.pos += 1
+            self.nested()
             operand = self.unary()
+            self.depth -= 1
             return _unary_node(op, operand, self.strings)
         return self.primary()
 
@@ -128,8 +142,10 @@ class _Parser:
             number = float(value)
             return lambda ctx: number
         if kind == "op" and value == "(":
+            self.nested()
             node = self.binary(1)
             self.expect(")")
+            self.depth -= 1
             return node
         if kind == "name":
             return self.name(value)
@@ -393,12 +409,17 @@ class Variables:
         self._evaluating.add(id(var))
         try:
             return var.node(self)
+        except RecursionError:
+            raise DemError(f"variable expression too deeply nested: {var.expression[:40]}...") from None
         finally:
             self._evaluating.discard(id(var))
 
     def evaluate(self, text, strings=False):
         """Value of an expression; with ``strings`` (if-conditions) unknown words compare as text."""
-        return compile_expression(text, strings)(self)
+        try:
+            return compile_expression(text, strings)(self)
+        except RecursionError:      # e.g. thousands of chained operators: a tree too deep to evaluate
+            raise DemError(f"expression too deeply nested: {text[:40]}...") from None
 
     def thermo(self, name):
         if self._thermo is None:

@@ -4,6 +4,9 @@ import numpy as np
 from ..command import Command
 from ..errors import DemError, unknown
 
+# coefficient tables are ntypes x ntypes rows: beyond this they no longer fit in memory comfortably
+MAX_TYPES = 1000
+
 
 class Units(Command):
     """units si
@@ -88,6 +91,9 @@ class CreateBox(Command):
         if self.sim.domain.box_exist:
             raise a.error("the box already exists")
         ntypes = a.int(0, "ntypes", positive=True)
+        if ntypes > MAX_TYPES:
+            raise a.error(f"{ntypes} particle types is more than dem supports ({MAX_TYPES}): coefficient "
+                          f"tables hold one row per pair of types")
         region = find_region(self.sim, a[1])
         lo, hi = region.bbox()
         if np.any(np.abs(lo) >= 1e29) or np.any(np.abs(hi) >= 1e29):

@@ -12,13 +12,32 @@ class Ignored(Command):
 
 
 class CommModify(Ignored):
-    """comm_modify vel yes: accepted for LAMMPS compatibility (ghosts always carry velocities)."""
+    """comm_modify [vel yes|no] [mode single|multi] [cutoff C] [group G]: accepted for LAMMPS
+    compatibility (ghosts always carry velocities; the ghost cutoff follows the particle sizes)."""
     style = "comm_modify"
+    usage = "[vel yes|no] [mode single|multi] [cutoff C] [group G]"
+
+    def __call__(self, words):
+        a = self.args(words)
+        kw = a.keywords(0, {"vel": 1, "mode": 1, "cutoff": 1, "group": 1})
+        if "vel" in kw:
+            a.yes_no(kw["vel"][0], "vel")
+        if "cutoff" in kw:
+            a.to_float(kw["cutoff"][0], "cutoff")
 
 
 class Newton(Ignored):
-    """newton on|off: accepted for LAMMPS compatibility (dem applies Newton's third law in half lists)."""
+    """newton on|off [on|off]: accepted for LAMMPS compatibility (dem applies Newton's third law in half
+    lists)."""
     style = "newton"
+    usage = "on|off [on|off]"
+
+    def __call__(self, words):
+        a = self.args(words)
+        a.need(1)
+        a.done(2)
+        for word in a.words:
+            a.yes_no(word, "newton")
 
 
 class Processors(Command):

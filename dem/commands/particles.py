@@ -18,6 +18,7 @@ class AtomStyle(Command):
     def __call__(self, words):
         a = self.args(words)
         a.need(1)
+        a.done(1)
         if a[0] not in ("sphere", "rigid", "shape", "granular"):
             raise a.error(f"atom style '{a[0]}' is not supported (use sphere)")
 
@@ -57,6 +58,8 @@ class GroupCommand(Command):
         name, how = a[0], a[1]
         atom = sim.atom
         n = atom.nlocal
+        if how in ("delete", "clear"):
+            a.exactly(2)
         if how == "delete":
             bit = sim.groups.bit(name)
             atom.data["mask"][:atom.nmax] &= ~bit

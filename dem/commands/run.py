@@ -1,6 +1,7 @@
 """Commands that run the simulation and set how it steps: timestep, neighbor, neigh_modify, run,
 reset_timestep."""
 from ..command import Command
+from ..errors import did_you_mean
 
 
 class Timestep(Command):
@@ -28,9 +29,10 @@ class NeighborCommand(Command):
     def __call__(self, words):
         a = self.args(words)
         a.need(1)
-        self.sim.neighbor.settings(a.float(0, "skin", nonneg=True))
+        a.done(2)
         if len(a) > 1 and a[1] not in ("bin", "multi"):
             raise a.error(f"neighbor style '{a[1]}' is not supported (use bin)")
+        self.sim.neighbor.settings(a.float(0, "skin", nonneg=True))
 
 
 class NeighModify(Command):
@@ -55,16 +57,84 @@ class NeighModify(Command):
 
 
 class Run(Command):
-    """run N
+    """run N [upto] [start S] [stop S] [pre yes|no] [post yes|no] [every M "command" ...]
 
-    Runs N time steps."""
+    Runs N time steps (`run 0`: set up, evaluate and output the state without stepping).
+    `upto`: N is the last step, not a count (run from the current step up to step N; a script restarted
+    from its last restart file then finishes the same run). `start S` / `stop S`: the first and last step
+    of a run made of several run commands, recorded as `update.beginstep` / `update.endstep` (S <= the
+    current step, S >= the last step of this run); no dem style reads them yet (LAMMPS uses them to
+    ramp fix and variable values over the whole sequence). `pre no`: when the run continues the
+    previous one, the thermo header and the repeated thermo line of the setup are left out (the setup
+    itself is always done: it is cheap and keeps trajectories bitwise identical). `post no`: only the
+    loop time line of the end-of-run summary is printed. `every M c1 c2 ...`: the run is split into
+    chunks of M steps (the last may be shorter) and the quoted commands are executed after each chunk,
+    substituted anew each time (`NULL`: no command); with `pre no` / `post no` the chunks after the
+    first / before the last skip that output. Example: `run 10000 every 1000 "print 'step $(step)'"`."""
     style = "run"
-    usage = "N"
+    usage = "N [upto] [start S] [stop S] [pre yes|no] [post yes|no] [every M c1 c2 ...]"
 
     def __call__(self, words):
         a = self.args(words)
         a.need(1)
-        self.sim.update.run(a.int(0, "N", nonneg=True))
+        sim = self.sim
+        update = sim.update
+        if update.running or update.in_run:
+            raise a.error("a run cannot be started from inside a run (e.g. from its 'every' commands)")
+        n = a.int(0, "N", nonneg=True)
+        upto, start, stop, pre, post, every, commands = False, None, None, True, True, 0, []
+        i = 1
+        while i < len(a):
+            key = a[i]
+            if key == "upto":
+                upto, i = True, i + 1
+            elif key in ("start", "stop"):
+                value = a.int(i + 1, key, nonneg=True)
+                start, stop = (value, stop) if key == "start" else (start, value)
+                i += 2
+            elif key in ("pre", "post"):
+                flag = a.yes_no(a[i + 1], key)
+                pre, post = (flag, post) if key == "pre" else (pre, flag)
+                i += 2
+            elif key == "every":
+                every = a.int(i + 1, "every M", positive=True)
+                commands = [w for w in a.words[i + 2:] if w != "NULL"]
+                if len(a) == i + 2:
+                    raise a.error("every M needs at least one command (NULL for none)")
+                break       # every takes the rest of the line
+            else:
+                raise a.error(f"unknown keyword '{key}'"
+                              f"{did_you_mean(key, ['upto', 'start', 'stop', 'pre', 'post', 'every'])}")
+        nsteps = n - update.ntimestep if upto else n
+        if nsteps < 0:
+            raise a.error(f"run {n} upto: the current step {update.ntimestep} is already past step {n}")
+        last = update.ntimestep + nsteps
+        if start is not None and start > update.ntimestep:
+            raise a.error(f"start {start} must be <= the current step {update.ntimestep}")
+        if stop is not None and stop < last:
+            raise a.error(f"stop {stop} must be >= the last step of this run ({last})")
+        update.beginstep = update.ntimestep if start is None else start
+        update.endstep = last if stop is None else stop
+        if not every:
+            update.run(nsteps, pre=pre, post=post)
+            return
+        self.chunks(nsteps, every, commands, pre, post)
+
+    def chunks(self, nsteps, every, commands, pre, post):
+        """LAMMPS `run N every M`: chunks of M steps, the commands after each one."""
+        sim, update = self.sim, self.sim.update
+        left, first = nsteps, True
+        update.in_run = True
+        try:
+            while left > 0 or first:
+                size = min(every, left)
+                update.run(size, pre=pre or first, post=post or left <= size)
+                for command in commands:
+                    sim.input.one(command)
+                left -= size
+                first = False
+        finally:
+            update.in_run = False
 
 
 class ResetTimestep(Command):

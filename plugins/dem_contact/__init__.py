@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from dem.args import float_error, number
 from dem.errors import DemError, did_you_mean
 
 from .law import COLUMNS
@@ -30,9 +31,9 @@ def parse(words, what, required=("kn", "en")):
             raise DemError(f"{what}: unknown coefficient '{key}'{did_you_mean(key, KEYWORDS)}; "
                            f"known: {', '.join(KEYWORDS)}")
         try:
-            out[key] = float(value)
+            out[key] = number(value)
         except ValueError:
-            raise DemError(f"{what}: {key} must be a number, got '{value}'") from None
+            raise DemError(f"{what}: {float_error(value, key)}") from None
     missing = [k for k in required if k not in out]
     if missing:
         raise DemError(f"{what}: missing {', '.join(missing)} ({'; '.join(KEYWORDS[k] for k in missing)})")
@@ -48,6 +49,23 @@ def check(c, what):
     for k in ("mu", "gamma_t", "ks", "mu_roll"):
         if c.get(k, 0.0) < 0:
             raise DemError(f"{what}: {k} must be >= 0")
+
+
+def frictionless(c):
+    """True when mu is given but neither ks nor gamma_t: the tangential force is then zero whatever mu
+    is (the law caps a trial force of -2 gamma_t m U_rt - ks xi). LAMMPS's granular styles take
+    Kt = 2/7 Kn for a NULL Kt; dem keeps its coefficients explicit and warns instead."""
+    return c.get("mu", 0.0) > 0 and not c.get("ks", 0.0) > 0 and not c.get("gamma_t", 0.0) > 0
+
+
+def warn_frictionless(sim, owner, what):
+    """Warn once per style instance (at the line that set such coefficients) that mu has no effect."""
+    if getattr(owner, "_warned_frictionless", False):
+        return
+    owner._warned_frictionless = True
+    where = sim.input.location
+    sim.warning(f"{where + ': ' if where else ''}{what}: mu is given but ks and gamma_t are 0, so the "
+                f"tangential force is zero (give ks and/or gamma_t for friction)")
 
 
 def beta(en):

@@ -6,7 +6,7 @@ import numpy as np
 from dem.args import parse_types
 from dem.errors import DemError
 
-from . import EN, KN, KS, NCOEFF, contact_time, parse, row
+from . import EN, KN, KS, NCOEFF, contact_time, frictionless, parse, row, warn_frictionless
 
 
 class PairCoefficients:
@@ -25,7 +25,10 @@ class PairCoefficients:
         nt = self.sim.atom.ntypes
         ti = parse_types(words[0], nt, "type I")
         tj = parse_types(words[1], nt, "type J")
-        r = row(parse(words[2:], "pair_coeff"))
+        law = parse(words[2:], "pair_coeff")
+        if frictionless(law):
+            warn_frictionless(self.sim, self, "pair_coeff")
+        r = row(law)
         for a in ti:
             for b in tj:
                 self.table[a, b] = r

@@ -5,7 +5,7 @@ import numpy as np
 
 from dem.errors import DemError
 
-from . import EN, KN, KS, NCOEFF, XI_WIDTH, contact_time, parse, row
+from . import EN, KN, KS, NCOEFF, XI_WIDTH, contact_time, frictionless, parse, row, warn_frictionless
 
 
 class WallCoefficients:
@@ -17,6 +17,8 @@ class WallCoefficients:
         law = parse(words, what, required=()) if words else {}
         if law and not {"kn", "en"} <= set(law):
             raise DemError(f"{what}: give both kn and en (or neither, to use pair_coeff I I)")
+        if frictionless(law):
+            warn_frictionless(self.sim, self, what)
         self.law = law
 
     def init_table(self, nwalls):

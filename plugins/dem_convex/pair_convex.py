@@ -29,7 +29,8 @@ class PairConvexGJK(PairCoefficients, Pair):
     The Grains3D law (Part III eq. 10-16, `dem_contact`) acts at the contact point with the relative
     velocity of the two surfaces there, the reduced mass m_ij and torques from the lever centre of mass ->
     contact point. Coefficients per type pair as for `pair_style sphere` (rolling resistance applies
-    between two spheres only). The tangential spring (ks > 0) and the GJK warm start (the last core
+    between two spheres only; mu without ks or gamma_t gives no tangential force, with a warning). The
+    tangential spring (ks > 0) and the GJK warm start (the last core
     separation and the last simplex: between boxes/polyhedra its vertices, otherwise its points in the
     two body frames; a lasting contact then costs about one support query) are contact history that
     survives rebuilds, restarts and migration.

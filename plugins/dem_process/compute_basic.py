@@ -16,6 +16,10 @@ class ComputeKE(Compute):
 
     style = "ke"
 
+    def __init__(self, sim, cid, group, args):
+        super().__init__(sim, cid, group, args)
+        self.parser().exactly(0)
+
     def compute_scalar(self):
         atom = self.sim.atom
         n = atom.nlocal
@@ -32,6 +36,10 @@ class ComputeERotate(Compute):
     frame for shaped particles."""
 
     style = "erotate"
+
+    def __init__(self, sim, cid, group, args):
+        super().__init__(sim, cid, group, args)
+        self.parser().exactly(0)
 
     def compute_scalar(self):
         atom = self.sim.atom

@@ -2,6 +2,7 @@
 
 import numpy as np
 
+from dem.args import float_error, number
 from dem.commands import find_region
 from dem.errors import DemError, did_you_mean
 from dem.fix import Fix, Stage
@@ -167,9 +168,9 @@ class FixInsert(Fix):
     @staticmethod
     def _number(word, key, what):
         try:
-            return float(word)
+            return number(word)
         except ValueError:
-            raise DemError(f"{what}: {key} must be a number, got '{word}'") from None
+            raise DemError(f"{what}: {float_error(word, key)}") from None
 
     def _draw_volume(self, target):
         tpl = self.templates[0]

@@ -45,6 +45,8 @@ class FixPrintSeries(Fix):
                     raise DemError(f"fix {fid} print/series: bad format '{f}'") from None
                 i += 2
             elif args[i] == "append" and i + 1 < len(args):
+                if args[i + 1] not in ("yes", "on", "1", "no", "off", "0"):
+                    raise DemError(f"fix {fid} print/series: append must be yes or no, got '{args[i + 1]}'")
                 append = args[i + 1] in ("yes", "on", "1")
                 i += 2
             else:

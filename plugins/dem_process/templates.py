@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 
+from dem.args import number
 from dem.errors import DemError
 
 
@@ -20,15 +21,15 @@ class RadiusDistribution:
         self.words = list(words)
         try:
             if words[0] == "uniform":
-                self.kind, self.a, self.b = "uniform", float(words[1]), float(words[2])
+                self.kind, self.a, self.b = "uniform", number(words[1]), number(words[2])
                 if not 0 < self.a <= self.b:
                     raise DemError(f"{what}: radius uniform needs 0 < RMIN <= RMAX")
             elif words[0] == "gaussian":
-                self.kind, self.a, self.b = "gaussian", float(words[1]), float(words[2])
+                self.kind, self.a, self.b = "gaussian", number(words[1]), number(words[2])
                 if self.a <= 0 or self.b < 0:
                     raise DemError(f"{what}: radius gaussian needs MEAN > 0 and SD >= 0")
             else:
-                self.kind, self.a, self.b = "fixed", float(words[0]), 0.0
+                self.kind, self.a, self.b = "fixed", number(words[0]), 0.0
                 if self.a <= 0:
                     raise DemError(f"{what}: radius must be > 0")
         except (ValueError, IndexError):

@@ -23,7 +23,9 @@ class PairSphere(PairCoefficients, Pair):
     the trial force, xi the tangential displacement kept as contact history while ks > 0 (it survives
     neighbor-list rebuilds and restarts). Optional rolling resistance: a torque mu_roll R_eff |F_n|
     opposing the relative angular velocity. Defaults: mu 0, gamma_t 0 (1/s), ks 0 (N/m), mu_roll 0
-    (with gamma_t = ks = 0 there is no tangential force whatever mu is: give one of them).
+    (with gamma_t = ks = 0 there is no tangential force whatever mu is: give one of them; pair_coeff
+    warns once when mu is given without either. LAMMPS's granular styles take Kt = 2/7 Kn for a NULL
+    Kt; dem keeps every coefficient explicit and never supplies one).
 
     Example (Part III Table 6, with ks = 2/7 kn and gamma_t as in inputs/in.drum)::
 

@@ -1,6 +1,7 @@
 """fix wall/plane"""
 import numpy as np
 
+from dem.args import number
 from dem.errors import DemError
 from dem.fix import Fix, Stage
 
@@ -41,7 +42,7 @@ class FixWallPlane(WallFix, Fix):
                 if word == "NULL":
                     continue
                 try:
-                    pos = float(word)
+                    pos = number(word)
                 except ValueError:
                     raise DemError(f"fix {fid} wall/plane: wall position must be a number or NULL, got "
                                    f"'{word}'") from None
