@@ -97,6 +97,10 @@ class CommMPI(Comm):
     def min(self, value):
         return self._allreduce(value, MPI.MIN)
 
+    def max_values(self, values):
+        self.world.Allreduce(MPI.IN_PLACE, values, MPI.MAX)
+        return values
+
     def any(self, flag):
         return bool(self._allreduce(int(bool(flag)), MPI.MAX))
 
