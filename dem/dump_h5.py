@@ -193,6 +193,9 @@ class DumpH5(Dump):
         self._grids = {}          # step -> XDMF text of the frame (insertion order)
         self._created = False     # the file was created by this dump (later opens append)
 
+    def output_files(self):
+        return [self.path, self.xdmf_path]
+
     def keyword(self, word, values):
         if word == "surface":
             if values[0] not in ("yes", "no"):

@@ -3,6 +3,7 @@ time per stage."""
 import resource
 
 from .errors import DemError
+from .output_names import OutputNames
 from .thermo import Thermo
 from .update import TIMERS
 
@@ -15,6 +16,7 @@ class Output:
         self.restart_every = 0
         self.restart_files = []
         self.last_thermo = None
+        self.names = OutputNames()  # the files of the log, dumps and restarts (no two on one file)
 
     # ----- dumps ----------------------------------------------------------------------------------
     def add_dump(self, args):
@@ -30,13 +32,30 @@ class Output:
             raise DemError(f"dump {did}: N must be > 0")
         if did in self.dumps:
             raise DemError(f"dump ID '{did}' already exists (undump it first)")
-        self.dumps[did] = cls(self.sim, did, group, every, path, args[5:])
+        dump = cls(self.sim, did, group, every, path, args[5:])
+        self.names.claim(f"dump {did}", dump.output_files(), f"dump {did} ({style})")
+        self.dumps[did] = dump
 
     def undump(self, did):
         if did not in self.dumps:
             from .errors import unknown
             raise unknown("dump ID", did, self.dumps)
         self.dumps.pop(did).close()
+        self.names.release(f"dump {did}")
+
+    # ----- restarts -------------------------------------------------------------------------------
+    def set_restart(self, every, files):
+        """`restart N file [file2]`: files checked against the other outputs' (0 turns it off)."""
+        if every:
+            self.names.claim("restart", files, "restart")
+        else:
+            self.names.release("restart")
+        self.restart_every, self.restart_files = every, list(files) if every else []
+
+    def check_restart_name(self, path, use):
+        """A restart written once (write_restart) must not replace the log or a dump."""
+        self.names.check([path], use, owner="restart")
+
 
     # ----- during a run ---------------------------------------------------------------------------
     def setup(self):

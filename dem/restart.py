@@ -107,7 +107,7 @@ class WriteRestart(Command):
     """write_restart FILE
 
     Writes the complete state (see read_restart). The file is written to a temporary name and renamed, so
-    an interrupted write never leaves a broken restart."""
+    an interrupted write never leaves a broken restart. The log's or a dump's file is refused."""
     style = "write_restart"
     usage = "file"
 
@@ -115,6 +115,7 @@ class WriteRestart(Command):
         a = self.args(words)
         a.exactly(1)
         self.sim.domain.require_box("write_restart")
+        self.sim.output.check_restart_name(a[0], "write_restart")
         write_restart(self.sim, a[0])
 
 
@@ -138,18 +139,17 @@ class Restart(Command):
     """restart N FILE [FILE2]
 
     Writes a restart every N steps (0 turns it off); `*` in the name is replaced by the step, two files
-    alternate."""
+    alternate. The log's or a dump's file is refused (as by write_restart)."""
     style = "restart"
     usage = "N file [file2]"
 
     def __call__(self, words):
         a = self.args(words)
         a.need(1)
-        out = self.sim.output
-        out.restart_every = a.int(0, "N", nonneg=True)
-        if out.restart_every:
+        every = a.int(0, "N", nonneg=True)
+        if every:
             a.need(2)
-            out.restart_files = a.words[1:3]
+        self.sim.output.set_restart(every, a.words[1:3])
 
 
 RESTART_COMMANDS = [WriteRestart, ReadRestart, Restart]

@@ -94,7 +94,8 @@ class DumpCommand(Command):
     """dump ID GROUP STYLE N FILE [args]
 
     Styles: h5 (one HDF5 file + XDMF for ParaView), vtk (VTU frames + PVD). Example:
-    `dump d1 all h5 1000 pour.h5`."""
+    `dump d1 all h5 1000 pour.h5`. A file (or `*` pattern) already written by another output (the log,
+    another dump, the periodic restarts) is refused: two outputs on one file destroy each other."""
     style = "dump"
     usage = "ID group style N file [args]"
 
