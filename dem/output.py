@@ -16,6 +16,7 @@ class Output:
         self.restart_every = 0
         self.restart_files = []
         self.last_thermo = None
+        self.last_restart = None   # (file, step) of the last periodic restart written
         self.names = OutputNames()  # the files of the log, dumps and restarts (no two on one file)
 
     # ----- dumps ----------------------------------------------------------------------------------
@@ -56,7 +57,6 @@ class Output:
         """A restart written once (write_restart) must not replace the log or a dump."""
         self.names.check([path], use, owner="restart")
 
-
     # ----- during a run ---------------------------------------------------------------------------
     def setup(self):
         step = self.sim.update.ntimestep
@@ -80,7 +80,9 @@ class Output:
         if self.restart_every and step % self.restart_every == 0:
             from .restart import write_restart
             path = self.restart_files[(step // self.restart_every) % len(self.restart_files)]
-            write_restart(self.sim, path.replace("*", str(step)))
+            path = path.replace("*", str(step))
+            write_restart(self.sim, path)
+            self.last_restart = (path, step)
 
     def emergency(self):
         """Before an error stops a run: write the current frame and flush every file."""
@@ -92,6 +94,21 @@ class Output:
                 dump.flush()
             except Exception:      # never mask the original error
                 pass
+
+    def stop_report(self, signum, done, nsteps):
+        """What a run stopped by a signal says: where it stopped and the files it leaves (all complete)."""
+        from .interrupt import signal_name
+        step = self.sim.update.ntimestep
+        lines = [f"{signal_name(signum)}: the run stopped at the end of step {step} ({done} of {nsteps} "
+                 f"steps); every output file is complete"]
+        for dump in self.dumps.values():
+            last = f", the last at step {dump.last_step}" if dump.last_step is not None else ""
+            lines.append(f"  dump {dump.id} ({dump.style}): {dump.nframes} frame(s) in '{dump.path}'{last}")
+        if self.last_restart:
+            lines.append(f"  restart: '{self.last_restart[0]}' at step {self.last_restart[1]}")
+        elif self.restart_every:
+            lines.append("  restart: none written yet")
+        return "\n".join(lines)
 
     def finish(self, nsteps, loop, total):
         sim = self.sim

@@ -11,6 +11,7 @@ import numpy as np
 
 from .command import Command
 from .errors import DemError
+from .interrupt import SIGNAL_STATE
 
 FORMAT = "dem-restart-1"
 
@@ -45,8 +46,14 @@ def write_restart(sim, path):
             with open(tmp, "wb") as fh:
                 pickle.dump(state, fh, protocol=pickle.HIGHEST_PROTOCOL)
             os.replace(tmp, path)
-        except OSError as e:
-            raise DemError(f"write_restart: cannot write '{path}': {e.strerror}") from None
+        except BaseException as e:      # an error or an interrupt: never leave the temporary file
+            try:
+                os.unlink(tmp)
+            except OSError:
+                pass
+            if isinstance(e, OSError):
+                raise DemError(f"write_restart: cannot write '{path}': {e.strerror}") from None
+            raise
 
 
 def read_restart(sim, path):
@@ -107,7 +114,8 @@ class WriteRestart(Command):
     """write_restart FILE
 
     Writes the complete state (see read_restart). The file is written to a temporary name and renamed, so
-    an interrupted write never leaves a broken restart. The log's or a dump's file is refused."""
+    an interrupted write never leaves a broken restart (nor the temporary file); SIGINT/SIGTERM wait
+    for the end of the write. The log's or a dump's file is refused."""
     style = "write_restart"
     usage = "file"
 
@@ -116,7 +124,8 @@ class WriteRestart(Command):
         a.exactly(1)
         self.sim.domain.require_box("write_restart")
         self.sim.output.check_restart_name(a[0], "write_restart")
-        write_restart(self.sim, a[0])
+        with SIGNAL_STATE.deferred():      # a signal waits for the whole file (and every rank)
+            write_restart(self.sim, a[0])
 
 
 class ReadRestart(Command):

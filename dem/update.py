@@ -14,6 +14,7 @@ import time
 import numpy as np
 
 from .errors import DemError
+from .interrupt import SIGNAL_STATE, Interrupted
 
 TIMERS = ("pair", "neigh", "comm", "modify", "integrate", "output")
 
@@ -32,7 +33,8 @@ class Update:
         self.max_overlap_fraction = 0.2
         self.vsync = 0.0   # v + vsync * f / m is the full-step velocity of the last force evaluation
         self.wall_fixes = []   # fixes with wall contacts (`worst_contact`), for the overlap stop
-        self._checks = np.zeros(2)   # check_step's reduction buffer
+        self.stop_signal = 0   # SIGINT/SIGTERM agreed by every rank: the run stops at the end of this step
+        self._checks = np.zeros(3)   # check_step's reduction buffer
 
     # ----- setup ----------------------------------------------------------------------------------
     def setup(self):
@@ -78,17 +80,28 @@ class Update:
         self.first_step = self.ntimestep
         self.last_step = self.ntimestep + nsteps
         self.wall_fixes = [f for f in sim.modify.fixes if hasattr(f, "worst_contact")]
-        self.running = True
+        self.stop_signal = 0
         t_setup = time.perf_counter()
-        try:
-            self.setup()
-            self.wall_start = time.perf_counter()
-            for _ in range(nsteps):
-                self.step()
-        finally:
-            self.running = False
-        loop = time.perf_counter() - (self.wall_start or t_setup)
-        sim.output.finish(nsteps, loop, time.perf_counter() - t_setup)
+        with SIGNAL_STATE.deferred():       # a signal stops the run at a step end (check_step)
+            self.running = True
+            try:
+                self.setup()
+                self.wall_start = time.perf_counter()
+                for _ in range(nsteps):
+                    self.step()
+                    if self.stop_signal:
+                        break
+                if not self.stop_signal:    # one that came after the last check: all ranks agree on it
+                    self.stop_signal = int(sim.comm.max(SIGNAL_STATE.pending))
+            finally:
+                self.running = False
+            done = self.ntimestep - self.first_step
+            loop = time.perf_counter() - (self.wall_start or t_setup)
+            sim.output.finish(done, loop, time.perf_counter() - t_setup)
+            if self.stop_signal:
+                SIGNAL_STATE.take()
+                raise Interrupted(self.stop_signal, sim.output.stop_report(self.stop_signal, done, nsteps),
+                                  step=self.ntimestep)
 
     def step(self):
         sim = self.sim
@@ -145,11 +158,10 @@ class Update:
         return t4
 
     def check_step(self):
-        """Once per step, after the forces: the largest contact overlap (pair style and walls) and a
-        particle behind a wall, in one reduction of two numbers (none in serial)."""
+        """Once per step, after the forces: the largest contact overlap (pair style and walls), a particle
+        behind a wall, and a pending SIGINT/SIGTERM, in one reduction of three numbers (none in serial):
+        every rank sees the same values, so all stop at the same step."""
         pair = self.sim.pair
-        if pair is None and not self.wall_fixes:
-            return
         v = self._checks
         v[0] = pair.max_overlap if pair is not None else 0.0
         v[1] = 0.0
@@ -157,9 +169,12 @@ class Update:
             v[0] = max(v[0], f.max_overlap)
             if f.behind:
                 v[1] = 1.0
+        v[2] = SIGNAL_STATE.pending
         self.sim.comm.max_values(v)
         if v[0] > self.max_overlap_fraction or v[1]:
             self.overlap_error(float(v[0]))
+        if v[2]:
+            self.stop_signal = int(v[2])
 
     def worst_contact(self):
         """(overlap / diameter, who) of this rank's largest overlap, pair style or wall."""

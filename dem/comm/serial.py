@@ -151,9 +151,9 @@ class Comm:
         return state["fields"], state["neighbor"]["xhold"]
 
     # ----- errors -------------------------------------------------------------------------------------
-    def fatal(self, sim, text):
-        """Report a DemError (log, then stderr) and return the exit status."""
+    def fatal(self, sim, text, status=1):
+        """Report a DemError or an interrupt (log, then stderr) and return the exit status."""
         if sim is not None:
             sim.print(text, screen=False)
         print(text, file=sys.stderr, flush=True)
-        return 1
+        return status

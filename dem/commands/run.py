@@ -57,7 +57,15 @@ class NeighModify(Command):
 class Run(Command):
     """run N
 
-    Runs N time steps."""
+    Runs N time steps.
+
+    SIGINT (Ctrl-C) or SIGTERM during a run stops it at the end of the current step, on every MPI rank
+    alike: the step's output is written, every dump and restart file is left complete (no half-written
+    HDF5 frame, no temporary file), the log and stderr say at which step it stopped and which frames and
+    restart were written, and `dem` exits with status 130 (SIGINT) or 143 (SIGTERM). A signal outside a
+    run (while the script is read) ends `dem` at once with the same status; one during `write_restart`
+    waits for the file. Called from Python, `sim.run` raises `dem.interrupt.Interrupted` (a
+    KeyboardInterrupt) after such a stop."""
     style = "run"
     usage = "N"
 
