@@ -49,8 +49,22 @@ def parse(argv):
 
 
 def main(argv=None):
+    from .interrupt import SIGNAL_STATE, Interrupted
+    SIGNAL_STATE.install()       # SIGINT/SIGTERM: a clean stop (dem/interrupt.py), exit 130/143
+    try:
+        status = _main(sys.argv[1:] if argv is None else argv)
+    except Interrupted as e:     # before the simulation existed, or while it was closed
+        SIGNAL_STATE.depth += 1
+        print(f"INTERRUPTED: {e.text}", file=sys.stderr, flush=True)
+        return e.exit_code
+    SIGNAL_STATE.depth += 1      # the process is ending: a late signal only sets the status
+    signum = SIGNAL_STATE.take()
+    return 128 + signum if signum and status == 0 else status
+
+
+def _main(argv):
+    from .interrupt import SIGNAL_STATE, Interrupted
     from .sim import Sim, fatal
-    argv = sys.argv[1:] if argv is None else argv
     try:
         opts = parse(argv)
     except (DemError, IndexError) as e:
@@ -68,7 +82,14 @@ def main(argv=None):
         sim.file(opts["in"])
         return 0
     except DemError as e:
+        SIGNAL_STATE.depth += 1      # reporting the error: a signal now must not cut the report short
         return fatal(sim, e)
+    except Interrupted as e:
+        SIGNAL_STATE.depth += 1
+        if sim is None:
+            print(f"INTERRUPTED: {e.text}", file=sys.stderr, flush=True)
+            return e.exit_code
+        return sim.comm.fatal(sim, f"INTERRUPTED: {e.text}", status=e.exit_code)
     except BrokenPipeError:          # output piped into a closed reader (e.g. `| head`)
         sys.stderr.close()
         return 1

@@ -233,6 +233,10 @@ class Dump:
     def write_frame(self, frame):
         raise NotImplementedError
 
+    def output_files(self):
+        """The files this dump writes (`*`: the step), that no other output may write."""
+        return [self.path]
+
     def flush(self):
         """Push what was written to disk (styles that keep a file open)."""
 

@@ -9,6 +9,7 @@ from .errors import DemError
 
 FORMAT = "dem-dump-h5"
 VERSION = 1
+PARTIAL = "frame_being_written"     # a frame is written here, then moved under /frames in one step
 
 # XDMF attribute name and type of each field (position is the geometry)
 XDMF_NAMES = {
@@ -172,7 +173,9 @@ class DumpH5(Dump):
     right after: between frames it is complete, so it can be read while the run goes on (ParaView,
     h5py, in this process or another) and after a crash. The writer does not lock the file; a reader in
     this same process must have closed it before the next frame is written. The XDMF sidecar is
-    rewritten atomically after every frame. A frame written again at the same step (two runs meeting at
+    rewritten atomically after every frame. A frame is built in the group ``/frame_being_written`` and
+    then moved under ``/frames`` in one step, so ``/frames`` only ever holds whole frames (SIGINT and
+    SIGTERM also wait for the end of the step, see ``run``). A frame written again at the same step (two runs meeting at
     a step) replaces the earlier one.
     """
 
@@ -192,6 +195,9 @@ class DumpH5(Dump):
         self.xdmf_path = (root if ext else self.path) + ".xdmf"
         self._grids = {}          # step -> XDMF text of the frame (insertion order)
         self._created = False     # the file was created by this dump (later opens append)
+
+    def output_files(self):
+        return [self.path, self.xdmf_path]
 
     def keyword(self, word, values):
         if word == "surface":
@@ -271,28 +277,17 @@ class DumpH5(Dump):
         with self._open() as f:
             frames = f.require_group("frames")
             name = frame_name(frame.step)
+            if PARTIAL in f:          # left by a process killed while writing a frame
+                del f[PARTIAL]
+            g = f.create_group(PARTIAL)
+            try:
+                datasets, surf = self._fill_frame(f, g, frame)
+            except BaseException:
+                del f[PARTIAL]
+                raise
             if name in frames:
                 del frames[name]
-            g = frames.create_group(name)
-            g.attrs["step"] = np.int64(frame.step)
-            g.attrs["time"] = np.float64(frame.time)
-            g.attrs["natoms"] = np.int64(frame.count)
-            g.attrs["box_lo"] = frame.lo
-            g.attrs["box_hi"] = frame.hi
-            datasets = {}
-            for field in self.fields:
-                data = frame.arrays[field]
-                g.create_dataset(field, data=data)
-                datasets[field] = (data.shape, data.dtype)
-            self.write_shapes(f)
-            surf = self.surface(frame) if self.surfaces else None
-            if surf is not None:
-                points, tris, owner = surf
-                ids = frame.arrays["id"][owner] if "id" in frame.arrays else owner
-                s = g.create_group("surface")
-                s.create_dataset("points", data=points)
-                s.create_dataset("triangles", data=tris)
-                s.create_dataset("id", data=np.asarray(ids, dtype=np.int64))
+            f.move(PARTIAL, f"frames/{name}")    # the frame appears whole or not at all
         self._grids.pop(frame.step, None)
         h5name = os.path.basename(self.path)
         grid = xdmf_grid(h5name, frame.step, frame.time, datasets)
@@ -300,3 +295,26 @@ class DumpH5(Dump):
             grid = xdmf_surface(h5name, frame.step, frame.time, grid, len(surf[0]), len(surf[1]))
         self._grids[frame.step] = grid
         atomic_write(self.xdmf_path, xdmf_document(self._grids.values(), name=str(self.id)))
+
+    def _fill_frame(self, f, g, frame):
+        """The attributes and datasets of a frame into group g; (datasets {field: (shape, dtype)}, surface)."""
+        g.attrs["step"] = np.int64(frame.step)
+        g.attrs["time"] = np.float64(frame.time)
+        g.attrs["natoms"] = np.int64(frame.count)
+        g.attrs["box_lo"] = frame.lo
+        g.attrs["box_hi"] = frame.hi
+        datasets = {}
+        for field in self.fields:
+            data = frame.arrays[field]
+            g.create_dataset(field, data=data)
+            datasets[field] = (data.shape, data.dtype)
+        self.write_shapes(f)
+        surf = self.surface(frame) if self.surfaces else None
+        if surf is not None:
+            points, tris, owner = surf
+            ids = frame.arrays["id"][owner] if "id" in frame.arrays else owner
+            s = g.create_group("surface")
+            s.create_dataset("points", data=points)
+            s.create_dataset("triangles", data=tris)
+            s.create_dataset("id", data=np.asarray(ids, dtype=np.int64))
+        return datasets, surf

@@ -128,6 +128,9 @@ class DumpVTK(Dump):
         else:
             super().keyword(word, values)
 
+    def output_files(self):
+        return [self.pattern] + ([self.pvd_path] if self.pvd_path else [])
+
     def frame_path(self, step):
         return self.pattern.replace("*", str(int(step)))
 

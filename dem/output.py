@@ -3,6 +3,7 @@ time per stage."""
 import resource
 
 from .errors import DemError
+from .output_names import OutputNames
 from .thermo import Thermo
 from .update import TIMERS
 
@@ -15,6 +16,8 @@ class Output:
         self.restart_every = 0
         self.restart_files = []
         self.last_thermo = None
+        self.last_restart = None   # (file, step) of the last periodic restart written
+        self.names = OutputNames()  # the files of the log, dumps and restarts (no two on one file)
 
     # ----- dumps ----------------------------------------------------------------------------------
     def add_dump(self, args):
@@ -30,13 +33,29 @@ class Output:
             raise DemError(f"dump {did}: N must be > 0")
         if did in self.dumps:
             raise DemError(f"dump ID '{did}' already exists (undump it first)")
-        self.dumps[did] = cls(self.sim, did, group, every, path, args[5:])
+        dump = cls(self.sim, did, group, every, path, args[5:])
+        self.names.claim(f"dump {did}", dump.output_files(), f"dump {did} ({style})")
+        self.dumps[did] = dump
 
     def undump(self, did):
         if did not in self.dumps:
             from .errors import unknown
             raise unknown("dump ID", did, self.dumps)
         self.dumps.pop(did).close()
+        self.names.release(f"dump {did}")
+
+    # ----- restarts -------------------------------------------------------------------------------
+    def set_restart(self, every, files):
+        """`restart N file [file2]`: files checked against the other outputs' (0 turns it off)."""
+        if every:
+            self.names.claim("restart", files, "restart")
+        else:
+            self.names.release("restart")
+        self.restart_every, self.restart_files = every, list(files) if every else []
+
+    def check_restart_name(self, path, use):
+        """A restart written once (write_restart) must not replace the log or a dump."""
+        self.names.check([path], use, owner="restart")
 
     # ----- during a run ---------------------------------------------------------------------------
     def setup(self, thermo=True):
@@ -62,7 +81,9 @@ class Output:
         if self.restart_every and step % self.restart_every == 0:
             from .restart import write_restart
             path = self.restart_files[(step // self.restart_every) % len(self.restart_files)]
-            write_restart(self.sim, path.replace("*", str(step)))
+            path = path.replace("*", str(step))
+            write_restart(self.sim, path)
+            self.last_restart = (path, step)
 
     def emergency(self):
         """Before an error stops a run: write the current frame and flush every file."""
@@ -74,6 +95,21 @@ class Output:
                 dump.flush()
             except Exception:      # never mask the original error
                 pass
+
+    def stop_report(self, signum, done, nsteps):
+        """What a run stopped by a signal says: where it stopped and the files it leaves (all complete)."""
+        from .interrupt import signal_name
+        step = self.sim.update.ntimestep
+        lines = [f"{signal_name(signum)}: the run stopped at the end of step {step} ({done} of {nsteps} "
+                 f"steps); every output file is complete"]
+        for dump in self.dumps.values():
+            last = f", the last at step {dump.last_step}" if dump.last_step is not None else ""
+            lines.append(f"  dump {dump.id} ({dump.style}): {dump.nframes} frame(s) in '{dump.path}'{last}")
+        if self.last_restart:
+            lines.append(f"  restart: '{self.last_restart[0]}' at step {self.last_restart[1]}")
+        elif self.restart_every:
+            lines.append("  restart: none written yet")
+        return "\n".join(lines)
 
     def finish(self, nsteps, loop, total, full=True):
         sim = self.sim

@@ -11,6 +11,7 @@ import numpy as np
 from . import restart_file
 from .command import Command
 from .errors import DemError
+from .interrupt import SIGNAL_STATE
 
 # 1: pickle, single-record history stores ({name}_n, _tag, _val); 2: pickle, keyed stores too
 # ({name}_key); 3: HDF5 (restart_file). Pickles are refused: loading one can run any code.
@@ -45,8 +46,14 @@ def write_restart(sim, path):
         try:
             restart_file.write(tmp, state, VERSION)
             os.replace(tmp, path)
-        except OSError as e:
-            raise DemError(f"write_restart: cannot write '{path}': {e.strerror or e}") from None
+        except BaseException as e:      # an error or an interrupt: never leave the temporary file
+            try:
+                os.unlink(tmp)
+            except OSError:
+                pass
+            if isinstance(e, OSError):
+                raise DemError(f"write_restart: cannot write '{path}': {e.strerror or e}") from None
+            raise
 
 
 def load(path):
@@ -109,7 +116,8 @@ class WriteRestart(Command):
     """write_restart FILE
 
     Writes the complete state (see read_restart). The file is written to a temporary name and renamed, so
-    an interrupted write never leaves a broken restart."""
+    an interrupted write never leaves a broken restart (nor the temporary file); SIGINT/SIGTERM wait
+    for the end of the write. The log's or a dump's file is refused."""
     style = "write_restart"
     usage = "file"
 
@@ -117,7 +125,9 @@ class WriteRestart(Command):
         a = self.args(words)
         a.exactly(1)
         self.sim.domain.require_box("write_restart")
-        write_restart(self.sim, a[0])
+        self.sim.output.check_restart_name(a[0], "write_restart")
+        with SIGNAL_STATE.deferred():      # a signal waits for the whole file (and every rank)
+            write_restart(self.sim, a[0])
 
 
 class ReadRestart(Command):
@@ -140,19 +150,18 @@ class Restart(Command):
     """restart N FILE [FILE2]
 
     Writes a restart every N steps (0 turns it off); `*` in the name is replaced by the step, two files
-    alternate."""
+    alternate. The log's or a dump's file is refused (as by write_restart)."""
     style = "restart"
     usage = "N file [file2]"
 
     def __call__(self, words):
         a = self.args(words)
         a.need(1)
-        out = self.sim.output
-        out.restart_every = a.int(0, "N", nonneg=True)
+        every = a.int(0, "N", nonneg=True)
         a.done(3)
-        if out.restart_every:
+        if every:
             a.need(2)
-            out.restart_files = a.words[1:3]
+        self.sim.output.set_restart(every, a.words[1:3])
 
 
 RESTART_COMMANDS = [WriteRestart, ReadRestart, Restart]

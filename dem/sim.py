@@ -45,6 +45,8 @@ class Sim:
         self.computes = {}             # compute ID -> compute, in definition order
         self.update = Update(self)
         self.output = Output(self)
+        if log:
+            self.output.names.claim("log", [log], "the log file")
         self.input = Input(self)
         self.units = "si"
         self.dimension = 3

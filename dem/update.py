@@ -14,6 +14,7 @@ import time
 import numpy as np
 
 from .errors import DemError
+from .interrupt import SIGNAL_STATE, Interrupted
 
 TIMERS = ("pair", "neigh", "comm", "modify", "integrate", "output")
 
@@ -34,6 +35,9 @@ class Update:
         self.wall_start = None
         self.max_overlap_fraction = 0.2
         self.vsync = 0.0   # v + vsync * f / m is the full-step velocity of the last force evaluation
+        self.wall_fixes = []   # fixes with wall contacts (`worst_contact`), for the overlap stop
+        self.stop_signal = 0   # SIGINT/SIGTERM agreed by every rank: the run stops at the end of this step
+        self._checks = np.zeros(3)   # check_step's reduction buffer
 
     # ----- setup ----------------------------------------------------------------------------------
     def setup(self, quiet=False):
@@ -81,18 +85,30 @@ class Update:
         self.timers = dict.fromkeys(TIMERS, 0.0)
         self.first_step = self.ntimestep
         self.last_step = self.ntimestep + nsteps
-        self.running = True
+        self.wall_fixes = [f for f in sim.modify.fixes if hasattr(f, "worst_contact")]
+        self.stop_signal = 0
         t_setup = time.perf_counter()
-        try:
-            self.setup(quiet=quiet_setup)
-            self.ran = True
-            self.wall_start = time.perf_counter()
-            for _ in range(nsteps):
-                self.step()
-        finally:
-            self.running = False
-        loop = time.perf_counter() - (self.wall_start or t_setup)
-        sim.output.finish(nsteps, loop, time.perf_counter() - t_setup, full=post)
+        with SIGNAL_STATE.deferred():       # a signal stops the run at a step end (check_step)
+            self.running = True
+            try:
+                self.setup(quiet=quiet_setup)
+                self.ran = True
+                self.wall_start = time.perf_counter()
+                for _ in range(nsteps):
+                    self.step()
+                    if self.stop_signal:
+                        break
+                if not self.stop_signal:    # one that came after the last check: all ranks agree on it
+                    self.stop_signal = int(sim.comm.max(SIGNAL_STATE.pending))
+            finally:
+                self.running = False
+            done = self.ntimestep - self.first_step
+            loop = time.perf_counter() - (self.wall_start or t_setup)
+            sim.output.finish(done, loop, time.perf_counter() - t_setup, full=post)
+            if self.stop_signal:
+                SIGNAL_STATE.take()
+                raise Interrupted(self.stop_signal, sim.output.stop_report(self.stop_signal, done, nsteps),
+                                  step=self.ntimestep)
 
     def step(self):
         sim = self.sim
@@ -143,27 +159,59 @@ class Update:
         timers["comm"] += t3 - t2
         if advance:
             sim.modify.post_force()
-            self.check_overlap()
+            self.check_step()
         t4 = clock()
         timers["modify"] += t4 - t3
         return t4
 
-    def check_overlap(self):
+    def check_step(self):
+        """Once per step, after the forces: the largest contact overlap (pair style and walls), a particle
+        behind a wall, and a pending SIGINT/SIGTERM, in one reduction of three numbers (none in serial):
+        every rank sees the same values, so all stop at the same step."""
         pair = self.sim.pair
-        if pair is None:
-            return
-        worst = self.sim.comm.max(pair.max_overlap)
-        if worst > self.max_overlap_fraction:
-            self.sim.output.emergency()
-            mine = (pair.max_overlap, getattr(pair, "max_overlap_tags", None))
-            tags = max(self.sim.comm.allgather(mine), key=lambda p: (p[1] is not None, p[0]))[1]
-            ids = f" between particles {tags[0]} and {tags[1]}" if tags else ""
+        v = self._checks
+        v[0] = pair.max_overlap if pair is not None else 0.0
+        v[1] = 0.0
+        for f in self.wall_fixes:
+            v[0] = max(v[0], f.max_overlap)
+            if f.behind:
+                v[1] = 1.0
+        v[2] = SIGNAL_STATE.pending
+        self.sim.comm.max_values(v)
+        if v[0] > self.max_overlap_fraction or v[1]:
+            self.overlap_error(float(v[0]))
+        if v[2]:
+            self.stop_signal = int(v[2])
+
+    def worst_contact(self):
+        """(overlap / diameter, who) of this rank's largest overlap, pair style or wall."""
+        pair = self.sim.pair
+        found = [(0.0, "")]
+        if pair is not None:
+            tags = getattr(pair, "max_overlap_tags", None)
+            found.append((pair.max_overlap, f"between particles {tags[0]} and {tags[1]}" if tags else ""))
+        for f in self.wall_fixes:
+            worst = f.worst_contact()
+            if worst is not None:
+                found.append((worst[0], "between " + worst[1]))
+        return max(found, key=lambda p: p[0])
+
+    def overlap_error(self, worst):
+        self.sim.output.emergency()
+        _, who = max(self.sim.comm.allgather(self.worst_contact()), key=lambda p: p[0])
+        who = f" {who}" if who else ""
+        limit = self.max_overlap_fraction
+        what = (f"exceeds the limit {limit:g} (thermo_modify overlap)" if worst > limit else
+                "with a particle's centre behind a wall")
+        if self.ntimestep == self.first_step:
+            hint = ("at the first step of the run: particles were created (create_atoms, read_data) "
+                    "overlapping each other or inside or behind a wall; keep them a radius clear of the walls")
+        else:
             tc = getattr(self, "min_contact_time", None)
             hint = (f"time step {self.dt:g} vs T_c = {tc:g} ({tc / self.dt:.1f} steps per contact)"
                     if tc else "check the stiffness and the time step")
-            raise DemError(f"overlap of {worst:.3g} x diameter{ids} at step {self.ntimestep} exceeds the "
-                           f"limit {self.max_overlap_fraction:g} (thermo_modify overlap)",
-                           hint=hint + "; a stiffer kn or a smaller time step reduces overlaps")
+            hint += "; a stiffer kn or a smaller time step reduces overlaps"
+        raise DemError(f"overlap of {worst:.3g} x diameter{who} at step {self.ntimestep} {what}", hint=hint)
 
     def nan_error(self, detail):
         self.sim.output.emergency()

@@ -97,6 +97,10 @@ class CommMPI(Comm):
     def min(self, value):
         return self._allreduce(value, MPI.MIN)
 
+    def max_values(self, values):
+        self.world.Allreduce(MPI.IN_PLACE, values, MPI.MAX)
+        return values
+
     def any(self, flag):
         return bool(self._allreduce(int(bool(flag)), MPI.MAX))
 
@@ -530,9 +534,10 @@ class CommMPI(Comm):
         return before
 
     # ----- errors and statistics ----------------------------------------------------------------
-    def fatal(self, sim, text):
-        """A DemError on this rank: rank 0 reports it; if the other ranks do not all stop with it within
-        ERROR_WAIT seconds (an error seen by this rank only), this rank reports it and aborts the job."""
+    def fatal(self, sim, text, status=1):
+        """A DemError (or an interrupt) on this rank: rank 0 reports it; if the other ranks do not all stop
+        with it within ERROR_WAIT seconds (an error seen by this rank only, a signal that reached a rank
+        blocked in a collective outside a run), this rank reports it and aborts the job with `status`."""
         if self.me == 0:
             print(text, file=sys.stderr, flush=True)
             if sim is not None:
@@ -551,9 +556,9 @@ class CommMPI(Comm):
                 print(f"ERROR on rank {self.me}: the other ranks did not stop with this error: aborting the "
                       f"MPI job", file=sys.stderr, flush=True)
                 time.sleep(ABORT_GRACE)
-                self.world.Abort(1)
+                self.world.Abort(status)
             time.sleep(0.002)
-        return 1
+        return status
 
     def reset_stats(self):
         self.stats = dict.fromkeys(("forward", "reverse", "wait", "exchange", "borders"), 0.0)

@@ -36,6 +36,10 @@ class Comm:
     def min(self, value):
         return value
 
+    def max_values(self, values):
+        """Elementwise max over ranks of a small float64 array (in place; serial: as it is)."""
+        return values
+
     def any(self, flag):
         return bool(flag)
 
@@ -147,9 +151,9 @@ class Comm:
         return state["fields"], state["neighbor"]["xhold"]
 
     # ----- errors -------------------------------------------------------------------------------------
-    def fatal(self, sim, text):
-        """Report a DemError (log, then stderr) and return the exit status."""
+    def fatal(self, sim, text, status=1):
+        """Report a DemError or an interrupt (log, then stderr) and return the exit status."""
         if sim is not None:
             sim.print(text, screen=False)
         print(text, file=sys.stderr, flush=True)
-        return 1
+        return status

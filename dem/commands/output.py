@@ -51,7 +51,9 @@ class ThermoModify(Command):
     """thermo_modify [lost error|warn|ignore] [overlap FRACTION] [format float FMT] [norm no] [flush yes]
 
     `lost`: what to do with a particle leaving through a fixed boundary (default error). `overlap`: stop
-    the run when an overlap exceeds this fraction of the smaller diameter (default 0.2). `format float`:
+    the run when an overlap exceeds this fraction of the smaller diameter (default 0.2), between two
+    particles or between a particle and a wall (its diameter); the error names both. A particle whose
+    centre lies behind a wall (created there) stops the run whatever the limit. `format float`:
     a Python or C format for float columns, e.g. %.8g."""
     style = "thermo_modify"
     usage = "[lost error|warn|ignore] [overlap F] [format float FMT] [norm no]"
@@ -92,7 +94,8 @@ class DumpCommand(Command):
     """dump ID GROUP STYLE N FILE [args]
 
     Styles: h5 (one HDF5 file + XDMF for ParaView), vtk (VTU frames + PVD). Example:
-    `dump d1 all h5 1000 pour.h5`."""
+    `dump d1 all h5 1000 pour.h5`. A file (or `*` pattern) already written by another output (the log,
+    another dump, the periodic restarts) is refused: two outputs on one file destroy each other."""
     style = "dump"
     usage = "ID group style N file [args]"
 

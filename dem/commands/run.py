@@ -70,7 +70,15 @@ class Run(Command):
     loop time line of the end-of-run summary is printed. `every M c1 c2 ...`: the run is split into
     chunks of M steps (the last may be shorter) and the quoted commands are executed after each chunk,
     substituted anew each time (`NULL`: no command); with `pre no` / `post no` the chunks after the
-    first / before the last skip that output. Example: `run 10000 every 1000 "print 'step $(step)'"`."""
+    first / before the last skip that output. Example: `run 10000 every 1000 "print 'step $(step)'"`.
+
+    SIGINT (Ctrl-C) or SIGTERM during a run stops it at the end of the current step, on every MPI rank
+    alike: the step's output is written, every dump and restart file is left complete (no half-written
+    HDF5 frame, no temporary file), the log and stderr say at which step it stopped and which frames and
+    restart were written, and `dem` exits with status 130 (SIGINT) or 143 (SIGTERM). A signal outside a
+    run (while the script is read) ends `dem` at once with the same status; one during `write_restart`
+    waits for the file. Called from Python, `sim.run` raises `dem.interrupt.Interrupted` (a
+    KeyboardInterrupt) after such a stop."""
     style = "run"
     usage = "N [upto] [start S] [stop S] [pre yes|no] [post yes|no] [every M c1 c2 ...]"
 

@@ -25,12 +25,17 @@ cdef enum:                 # what the kernel sums into stats
     W_MAXOV = 1            # largest overlap / diameter
     W_ENERGY = 2           # elastic energy of the wall contacts
     W_TORQUE = 3           # torque of the turning surfaces on the particles about their axis
-    W_NSTAT = 4
+    W_WORST_I = 4          # the contact of the largest overlap: local particle index (-1: none)
+    W_WORST_W = 5          # ... its surface
+    W_WORST_GAP = 6        # ... distance of the particle's centre in front of the surface (< 0: behind)
+    W_BEHIND = 7           # particles whose centre lies behind a surface (created there, or shot through)
+    W_NSTAT = 8
 
 # the enums above, for Python (dem_walls.wall_fix)
 SURFACE = {"CYLINDER": S_CYLINDER, "A": S_A, "SIDE": S_SIDE, "POS": S_POS, "R": S_R, "CENTRE": S_CENTRE,
            "SPIN": S_SPIN, "OMEGA": S_OMEGA, "NCOL": S_NCOL}
-STAT = {"CONTACTS": W_CONTACTS, "MAXOV": W_MAXOV, "ENERGY": W_ENERGY, "TORQUE": W_TORQUE, "NSTAT": W_NSTAT}
+STAT = {"CONTACTS": W_CONTACTS, "MAXOV": W_MAXOV, "ENERGY": W_ENERGY, "TORQUE": W_TORQUE, "WORST_I": W_WORST_I,
+        "WORST_W": W_WORST_W, "WORST_GAP": W_WORST_GAP, "BEHIND": W_BEHIND, "NSTAT": W_NSTAT}
 
 cdef double ZERO[3]
 ZERO[:] = [0.0, 0.0, 0.0]
@@ -65,6 +70,7 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
     cdef const TableView* T = &table
     cdef int i, w, d, s, nw = surfaces.shape[0]
     cdef double gap, rho, energy = 0.0, torque = 0.0, ncont = 0.0, maxov = 0.0, ov
+    cdef double worst_i = -1.0, worst_w = -1.0, worst_gap = 0.0, behind = 0.0
     cdef double p[3]
     cdef double vw[3]
     cdef double ww[3]
@@ -121,6 +127,9 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
                 ov = con.delta / (2.0 * P.radius[i])
                 if ov > maxov:
                     maxov = ov
+                    worst_i, worst_w, worst_gap = i, w, gap
+                if gap < 0.0:
+                    behind += 1.0
                 if W.spin >= 0:
                     _wall_motion(W, con.p, x, p, vw, ww)
                     B.v = vw
@@ -144,3 +153,7 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
     stats[W_MAXOV] = maxov
     stats[W_ENERGY] = energy
     stats[W_TORQUE] = torque
+    stats[W_WORST_I] = worst_i
+    stats[W_WORST_W] = worst_w
+    stats[W_WORST_GAP] = worst_gap
+    stats[W_BEHIND] = behind

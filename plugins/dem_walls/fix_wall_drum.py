@@ -154,6 +154,9 @@ class FixWallDrum(WallFix, Fix):
                      turning(plane(a, self.ends[1], -1.0), a, self.centre, spin)]
         return np.array(rows)
 
+    def surface_name(self, w):
+        return ["'drum'", "'end LO'", "'end HI'"][w]
+
     def end_of_step(self):
         dt = self.sim.update.dt
         t0 = self.elapsed

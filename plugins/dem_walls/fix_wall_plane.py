@@ -5,7 +5,7 @@ from dem.args import number
 from dem.errors import DemError
 from dem.fix import Fix, Stage
 
-from .wall_fix import WallFix, plane
+from .wall_fix import S, WallFix, plane
 
 
 class FixWallPlane(WallFix, Fix):
@@ -72,6 +72,10 @@ class FixWallPlane(WallFix, Fix):
 
     def surfaces(self):
         return self.table_rows
+
+    def surface_name(self, w):
+        axis, pos, side = int(self.table_rows[w][S["A"]]), self.table_rows[w][S["POS"]], self.table_rows[w][S["SIDE"]]
+        return f"'{'xyz'[axis]}plane {pos:g}' (facing {'+' if side > 0 else '-'}{'xyz'[axis]})"
 
     def thermo(self):
         return {"contacts": self.sim.comm.sum(self.ncontacts)}

@@ -42,6 +42,8 @@ class WallFix(WallCoefficients):
         self.init_table(nwalls)
         self.shape_view = shape_command.shape_view(self.sim)
         self.stats = np.zeros(STAT["NSTAT"])
+        self.stats[STAT["WORST_I"]] = -1
+        self.behind = 0
 
     def compute(self, advance):
         sim = self.sim
@@ -51,6 +53,24 @@ class WallFix(WallCoefficients):
         self.max_overlap = float(self.stats[STAT["MAXOV"]])
         self.energy = float(self.stats[STAT["ENERGY"]])
         self.torque = float(self.stats[STAT["TORQUE"]])
+        self.behind = int(self.stats[STAT["BEHIND"]])
+
+    def worst_contact(self):
+        """(overlap / diameter, text naming the particle and the surface) of this rank's largest wall
+        overlap at the last compute, or None (for the overlap stop, `Update.check_step`)."""
+        i = int(self.stats[STAT["WORST_I"]])
+        if i < 0:
+            return None
+        tag = int(self.sim.atom.data["tag"][i])
+        gap = float(self.stats[STAT["WORST_GAP"]])
+        text = f"particle {tag} and wall {self.surface_name(int(self.stats[STAT['WORST_W']]))} of fix {self.id}"
+        if gap < 0.0:
+            text += f" (its centre lies {-gap:.3g} behind the wall)"
+        return self.max_overlap, text
+
+    def surface_name(self, w):
+        """How an error names surface w of the table (wall styles say more)."""
+        return f"surface {w}"
 
     def post_force(self):
         self.compute(True)
