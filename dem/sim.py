@@ -1,6 +1,7 @@
 """The root object (rule 1): one Sim owns comm, atom, domain, neighbor, pair, modify, update, output,
 input, registry, the shape table and the computes; every style receives the sim and reaches what it
 needs from it."""
+import math
 import os
 import sys
 
@@ -67,7 +68,10 @@ class Sim:
         return self
 
     def run(self, nsteps):
-        self.update.run(int(nsteps))
+        n = float(nsteps)
+        if not (math.isfinite(n) and n == int(n)):
+            raise DemError(f"run: the number of steps must be a whole number, got {nsteps!r}")
+        self.update.run(int(n))
         return self
 
     # ----- output ----------------------------------------------------------------------------------

@@ -72,3 +72,10 @@ def test_pre_no_and_post_no_shorten_the_output(tmp_path):
 def test_a_run_inside_every_is_refused(tmp_path):
     with pytest.raises(dem.DemError, match="cannot be started from inside a run"):
         make(tmp_path, 'run 10 every 5 "run 3"\n')
+
+
+@pytest.mark.parametrize("n", [float("nan"), float("inf"), 2.5])
+def test_python_run_refuses_a_step_count_that_is_not_whole(tmp_path, n):
+    sim = make(tmp_path, "")
+    with pytest.raises(dem.DemError, match="run: the number of steps must be a whole number"):
+        sim.run(n)
