@@ -45,6 +45,7 @@ class ReadData(Command):
             raise DemError(f"read_data: '{path}' is not a text (UTF-8) data file") from None
         d = DataFile(path, lines)
         atoms = d.atoms()
+        d.check_inside(atoms, sim.domain.boundary)
         v, omega = d.velocities(atoms["tags"])
         if "Masses" in d.sections:
             sim.warning(f"read_data {path}: Masses section ignored (masses come from diameter and density)")
@@ -175,7 +176,23 @@ class DataFile:
                 image[k] = [self.integer(lineno, w, "image flag") for w in words[7:10]]
         radius = 0.5 * diameter
         return {"tags": tags, "types": types, "radius": radius, "x": x, "image": image,
-                "rmass": density * 4.0 / 3.0 * math.pi * radius ** 3}
+                "rmass": density * 4.0 / 3.0 * math.pi * radius ** 3, "lines": [ln for ln, _ in rows]}
+
+    def check_inside(self, atoms, boundary):
+        """Atom centres lie inside the box along fixed ('f') boundaries (elsewhere the box follows the
+        atoms, or periodic images wrap them); the first one outside is an error naming its line."""
+        x = atoms["x"]
+        for d in range(3):
+            for side, style in enumerate(boundary[d]):
+                if style != "f":
+                    continue
+                out = np.flatnonzero(x[:, d] < self.lo[d] if side == 0 else x[:, d] > self.hi[d])
+                if len(out):
+                    k, axis = out[0], "xyz"[d]
+                    bound = f"{axis}lo {self.lo[d]:g}" if side == 0 else f"{axis}hi {self.hi[d]:g}"
+                    raise self.error(atoms["lines"][k], f"atom {atoms['tags'][k]} lies outside the box "
+                                                        f"({axis} = {x[k, d]:g} beyond {bound}, a fixed "
+                                                        f"boundary); {len(out)} atom(s) in all")
 
     def velocities(self, tags):
         n = len(tags)

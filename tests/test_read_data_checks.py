@@ -65,3 +65,17 @@ def test_good_file_still_reads(tmp_path):
     path.write_text(HEAD + "\n".join(GOOD) + VEL)
     sim = dem.Simulation(screen=False).command(f"read_data {path}")
     assert sim.atom.natoms == 2 and sim.gather("tag").tolist() == [1, 2]
+
+
+def test_atom_outside_a_fixed_boundary(tmp_path):
+    """Along a fixed boundary an atom outside the box is an error naming its line (it would be lost at the
+    first step, or on no rank at all under MPI); along a periodic one it is wrapped as usual."""
+    path = tmp_path / "out.data"
+    path.write_text(HEAD + GOOD[0] + "\n2 1 0.001 2500 0.03 0.01 0.01\n")
+    sim = dem.Simulation(screen=False)
+    with pytest.raises(dem.DemError, match=r"out.data:13: atom 2 lies outside the box \(x = 0.03 beyond xhi "
+                                           r"0.02, a fixed boundary\)"):
+        sim.commands(f"boundary f f f\nread_data {path}\n")
+    assert not sim.domain.box_exist
+    sim = dem.Simulation(screen=False).commands(f"boundary p f f\nread_data {path}\n")
+    assert sim.atom.natoms == 2
