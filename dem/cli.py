@@ -1,4 +1,5 @@
-"""The `dem` command: dem -in FILE [-var NAME VALUE ...] [-log FILE] [-screen none]"""
+"""The `dem` command: dem -in FILE [-var NAME VALUE ...] [-log FILE] [-screen none]; without -in the
+script is read from standard input (`dem < in.file`), as LAMMPS does."""
 import sys
 import time
 
@@ -6,7 +7,21 @@ from . import __version__
 
 from .errors import DemError
 
-USAGE = "usage: dem -in FILE [-var NAME VALUE ...] [-log FILE|none] [-screen none] [-echo screen|log|both]"
+USAGE = ("usage: dem -in FILE [-var NAME VALUE ...] [-log FILE|none] [-screen none] [-echo screen|log|both]\n"
+         "       dem [options] < FILE   (the script from standard input)\n"
+         "       dem -h                 (this, and every installed style)\n"
+         "       dem --version")
+
+
+def styles_text():
+    """Every installed style by kind, with the plugin that provides it (dem -h)."""
+    from .registry import KINDS, default_registry
+    reg = default_registry()
+    lines = ["installed styles (plugin):"]
+    for kind in KINDS:
+        names = sorted(reg.styles[kind])
+        lines.append(f"  {kind} ({len(names)}): " + ", ".join(f"{n} ({reg.provider(kind, n)})" for n in names))
+    return "\n".join(lines)
 
 
 def parse(argv):
@@ -40,11 +55,15 @@ def parse(argv):
             i += 2
         elif key in ("h", "help"):
             print(USAGE)
+            print(styles_text())
+            raise SystemExit(0)
+        elif key == "version":
+            print(f"dem {__version__}")
             raise SystemExit(0)
         else:
             raise DemError(f"unknown command-line option '{a}'\n{USAGE}")
-    if opts["in"] is None:
-        raise DemError(f"no input script\n{USAGE}")
+    if opts["in"] is None and sys.stdin is not None and sys.stdin.isatty():
+        raise DemError(f"no input script (give -in FILE, or the script on standard input)\n{USAGE}")
     return opts
 
 
@@ -76,10 +95,14 @@ def _main(argv):
         sim = Sim(screen=opts["screen"], log=opts["log"], variables=opts["var"])
         sim.print(f"dem {__version__} (Discrete Element Method), started {time.strftime('%Y-%m-%d %H:%M:%S')}")
         sim.print(f"  command line: dem {' '.join(argv)}")
-        sim.print(f"  {sim.comm.nprocs} process(es), input {opts['in']}, log {opts['log'] or 'none'}")
+        sim.print(f"  {sim.comm.nprocs} process(es), input {opts['in'] or 'standard input'}, "
+                  f"log {opts['log'] or 'none'}")
         if opts["echo"]:
             sim.input.one(f"echo {opts['echo']}")
-        sim.file(opts["in"])
+        if opts["in"] is None:      # MPI launchers give standard input to rank 0 only
+            sim.input.lines(sim.comm.bcast(sys.stdin.read() if sim.comm.me == 0 else None), name="<stdin>")
+        else:
+            sim.file(opts["in"])
         return 0
     except DemError as e:
         SIGNAL_STATE.depth += 1      # reporting the error: a signal now must not cut the report short

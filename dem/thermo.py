@@ -97,6 +97,9 @@ class Thermo:
             "tps": lambda: up.progress()[1],
             "eta": lambda: up.progress()[2],
             "cpu": lambda: up.elapsed(),
+            "spcpu": lambda: up.progress()[1],                     # the LAMMPS names
+            "tpcpu": lambda: up.progress()[1] * (up.dt or 0.0),
+            "cpuremain": lambda: up.progress()[2],
         }
         if name in simple:
             return simple[name]()
@@ -108,7 +111,8 @@ class Thermo:
                 continue
             if w not in INT_KEYWORDS | set(DEFAULT_STYLE) | {"pe", "etotal", "lost", "nbuild", "xlo", "xhi",
                                                              "ylo", "yhi", "zlo", "zhi", "lx", "ly", "lz",
-                                                             "vol", "cpu", "dt", "time"}:
+                                                             "vol", "cpu", "dt", "time", "spcpu", "tpcpu",
+                                                             "cpuremain"}:
                 self.keyword(w)   # raises with a suggestion
 
     # ----- lines ----------------------------------------------------------------------------------

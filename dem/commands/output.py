@@ -22,12 +22,14 @@ class ThermoStyle(Command):
     """thermo_style custom keyword ... | thermo_style one
 
     Keywords: step time dt atoms ke erot pe etotal contacts cn maxov lost nbuild xlo xhi ylo yhi zlo zhi
-    lx ly lz vol cpu pct tps eta, v_NAME (equal-style variable), f_ID[name] (fix value), c_ID and c_ID[k]
-    (compute value).
+    lx ly lz vol cpu pct tps eta spcpu tpcpu cpuremain, v_NAME (equal-style variable), f_ID[name] (fix
+    value), c_ID and c_ID[k] (compute value).
     `ke`/`erot` use the stored half-step velocities; `etotal` is time-centred (full-step kinetic energy
     plus the elastic energy of the same force evaluation). `contacts` counts particle-particle contacts,
     `cn` = 2 contacts / particles, `maxov` the largest overlap over the smaller diameter, and pct/tps/eta
-    the progress of the run (percent, steps per second, seconds left).
+    the progress of the run (percent, steps per second, seconds left); `cpu` the seconds since the run
+    started. LAMMPS names work too: `spcpu` (= tps), `tpcpu` (simulated seconds per second), `cpuremain`
+    (= eta, in seconds).
     Default (`one`): step time atoms ke erot contacts cn maxov pct tps eta."""
     style = "thermo_style"
     usage = "custom keywords... | one"
