@@ -15,7 +15,8 @@ print "STEP $(step)"
 """
 
 
-def dem_run(args, stdin=None, cwd=None):
+def dem_run(args, cwd, stdin=None):
+    """`python -m dem ARGS` run outside the source tree (there `dem` would be the unbuilt sources)."""
     return subprocess.run([sys.executable, "-m", "dem", *args], input=stdin, capture_output=True, text=True,
                           cwd=cwd, timeout=120)
 
@@ -31,13 +32,13 @@ def test_an_error_in_standard_input_names_its_line(tmp_path):
     assert out.returncode == 1 and "<stdin>:5:" in out.stderr and "Traceback" not in out.stderr
 
 
-def test_version():
-    out = dem_run(["--version"])
+def test_version(tmp_path):
+    out = dem_run(["--version"], cwd=tmp_path)
     assert out.returncode == 0 and out.stdout.strip() == f"dem {dem.__version__}"
 
 
-def test_help_lists_every_installed_style_by_kind():
-    out = dem_run(["-h"])
+def test_help_lists_every_installed_style_by_kind(tmp_path):
+    out = dem_run(["-h"], cwd=tmp_path)
     assert out.returncode == 0 and out.stdout.startswith("usage: dem")
     registry = dem.registry.default_registry()
     for kind, styles in registry.styles.items():
