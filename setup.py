@@ -40,7 +40,7 @@ setup(
     entry_points={
         "console_scripts": ["dem = dem.cli:main"],
         "dem": ["core = dem.builtin", "sphere = dem_sphere", "fixes = dem_fixes", "process = dem_process",
-                "convex = dem_convex", "walls = dem_walls"],
+                "convex = dem_convex", "walls = dem_walls", "glued = dem_glued"],
     },
     zip_safe=False,
 )

@@ -57,6 +57,14 @@ class SimShapes(ShapeTable):
             raise DemError(f"unknown shape '{name}'{did_you_mean(name, self.names)}",
                            hint="define it first: shape NAME KIND params ...") from None
 
+    def convex_pieces(self, idx, resolution=24):
+        """Body-frame convex surfaces [(vertices, faces)] of row idx at scale 1: a composite's posed
+        components, any other shape itself."""
+        shape = self.shapes[idx]
+        if hasattr(shape, "pieces"):
+            return shape.pieces(resolution)
+        return [self.mesh(idx, resolution)]
+
     def mesh(self, idx, resolution=24):
         """Body-frame surface (vertices, faces) of row idx at scale 1, cached."""
         m = self._meshes.get(idx)
@@ -343,6 +351,14 @@ class ShapeCommand(Command):
         if name in t.names:
             raise a.error(f"shape '{name}' already exists (shape indices must not change)")
         cls = sim.registry.get("shape", kind)
+        if getattr(cls, "raw", False):       # composites read their own words (dem/shape_glued.py)
+            shape = cls(sim).parse(a, 2)
+            sim.shapes = t.added(name, shape, words)
+            sim.print(f"Shape {name} ({kind}, {len(shape.components)} components): volume {shape.volume:.6g} "
+                      f"({shape.mass_method}" + (f", estimated error {shape.mass_error:.2g}" if shape.mass_error
+                                                 else "") + f"), bounding radius {shape.bounding_radius:.6g}, "
+                      f"principal moments / density {' '.join(f'{m:.6g}' for m in shape.principal_moments)}")
+            return
         values, crust, file = [], None, None
         i = 2
         while i < len(a):
@@ -381,4 +397,9 @@ def rebuild(sim, definitions):
         cmd(words)
 
 
-SHAPE_STYLES = [ShapeCommand] + SHAPE_KINDS
+def _glued_kinds():
+    from .shape_glued import GLUED_KINDS
+    return GLUED_KINDS
+
+
+SHAPE_STYLES = [ShapeCommand] + SHAPE_KINDS + _glued_kinds()

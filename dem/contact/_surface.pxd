@@ -143,10 +143,14 @@ cdef inline void centroid_beyond(const ShapeRef* S, const double* R, const doubl
 
 
 cdef inline double plane_touch(const ShapeRef* S, const double* R, const double* x, const Surface* w,
-                               bint centroid, double tol, double* n, double* q) noexcept nogil:
+                               bint centroid, double tol, const double* bias, double* n,
+                               double* q) noexcept nogil:
     """A posed body against the plane w (w.cylinder false): the overlap (<= 0: apart), n the unit normal from
     the wall into the body and q the contact point: the deepest point (support along -n), or the centroid
-    of the candidate points beyond the wall, moved midway into the overlap."""
+    of the candidate points beyond the wall, moved midway into the overlap. `bias` (NULL: none), a vector
+    of length ~1e-9 added to the support direction, breaks ties between equally deep points (a face or an
+    edge parallel to the wall) towards it: a composite's components pick the points away from its centre,
+    mirror-symmetrically, instead of the same corner each."""
     cdef double dn[3]
     cdef double delta
     cdef int d
@@ -155,6 +159,9 @@ cdef inline double plane_touch(const ShapeRef* S, const double* R, const double*
     n[w.a] = w.side
     for d in range(3):
         dn[d] = -n[d]
+    if bias != NULL:
+        for d in range(3):
+            dn[d] += bias[d]
     support_world(S, R, x, dn, q)
     delta = -w.side * (q[w.a] - w.pos)
     if delta <= 0.0:

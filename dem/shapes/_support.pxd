@@ -15,6 +15,7 @@ cpdef enum Kind:           # shape kinds (the one source: dem.shapes.base reads 
     ELLIPSOID = 4
     SUPERQUADRIC = 5
     POLYHEDRON = 6
+    GLUED = 7              # a composite: its components are further rows (dem/shapes/_table.pxd); no support
 
 cdef enum:                 # a shape row's parameters (Python: _support.LAYOUT): NPARAM values,
     NPARAM = 8             # params[MARGIN] the erosion margin

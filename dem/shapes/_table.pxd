@@ -5,14 +5,20 @@ ShapeRef a support query needs. Row s: body `kind[s]`, `params[NPARAM s:]`, vert
 (nv[s] of them); its core (the body shrunk by its crust) alike; the crust at scale 1 and per unit
 bounding radius; the bounding radius at scale 1.
 
-Planned rows (same table, no other kernel argument): a glued composite lists its components as further
-rows (first component, count, and per component an offset and an orientation in the composite frame),
-with the union's mass properties in the row itself; a polyhedron adds its faces and edges as offsets and
-counts into shared face/edge arrays, as the vertices are today."""
+A glued composite (kind GLUED) lists its components, further rows of the same table: `comp_count[s]` of
+them from `comp_first[s]` in the component arrays, `comp_row[c]` the component's row and `comp_pose[12 c:]`
+its rotation (row-major) and offset in the composite's body frame at scale 1 (see table.py). Every other
+row has comp_count 0: it is its own single component (`ncomponents`, `component_row`, `pose_component`).
+
+Planned: a polyhedron adds its faces and edges as offsets and counts into shared face/edge arrays, as
+the vertices are today."""
 cimport numpy as cnp
 from dem.shapes._support cimport ShapeRef, NPARAM, quat_to_rot
 
 ctypedef cnp.int64_t i64
+
+cdef enum:
+    COMP_POSE = 12         # values of a component pose: rotation (9, row-major) then offset (3)
 
 
 cdef struct TableView:
@@ -30,6 +36,10 @@ cdef struct TableView:
     const double* radius
     const int* is_sphere
     const double* verts
+    const int* comp_first
+    const int* comp_count
+    const int* comp_row
+    const double* comp_pose
 
 
 cdef class ShapeView:
@@ -70,3 +80,36 @@ cdef inline void pose_body(const TableView* t, int s, const double* quat, double
     quat_to_rot(quat, R)
     for k in range(9):
         R[k] *= sc
+
+
+cdef inline int ncomponents(const TableView* t, int s) noexcept nogil:
+    """Convex pieces of a particle of shape index s: its components (a composite) or itself (1)."""
+    if s < 0 or t.comp_count[s] == 0:
+        return 1
+    return t.comp_count[s]
+
+
+cdef inline int component_row(const TableView* t, int s, int c) noexcept nogil:
+    """The row of piece c of shape index s (s itself when it is not a composite; -1 stays a sphere)."""
+    if s < 0 or t.comp_count[s] == 0:
+        return s
+    return t.comp_row[t.comp_first[s] + c]
+
+
+cdef inline void pose_component(const TableView* t, int s, int c, const double* R, const double* x,
+                                double* Rc, double* xc) noexcept nogil:
+    """Piece c of a particle of shape index s posed at (R, x), R its scaled rotation (body -> world times
+    the scale): Rc = R Q_c and xc = x + R o_c, (Q_c, o_c) the component's pose in the composite frame."""
+    cdef const double* q
+    cdef int a, b
+    if s < 0 or t.comp_count[s] == 0:
+        for a in range(9):
+            Rc[a] = R[a]
+        for a in range(3):
+            xc[a] = x[a]
+        return
+    q = t.comp_pose + COMP_POSE * (t.comp_first[s] + c)
+    for a in range(3):
+        for b in range(3):
+            Rc[3 * a + b] = R[3 * a] * q[b] + R[3 * a + 1] * q[3 + b] + R[3 * a + 2] * q[6 + b]
+        xc[a] = x[a] + R[3 * a] * q[9] + R[3 * a + 1] * q[10] + R[3 * a + 2] * q[11]

@@ -36,9 +36,9 @@ import numpy as np
 from ._support import LAYOUT, Kind, support_points
 
 # kind codes and the parameter layout: defined once, in _support.pxd (the kernels' enums)
-SPHERE, BOX, CYLINDER, CONE, ELLIPSOID, SUPERQUADRIC, POLYHEDRON = (int(k) for k in Kind)
+SPHERE, BOX, CYLINDER, CONE, ELLIPSOID, SUPERQUADRIC, POLYHEDRON, GLUED = (int(k) for k in Kind)
 KIND_NAMES = {SPHERE: "sphere", BOX: "box", CYLINDER: "cylinder", CONE: "cone", ELLIPSOID: "ellipsoid",
-              SUPERQUADRIC: "superquadric", POLYHEDRON: "polyhedron"}
+              SUPERQUADRIC: "superquadric", POLYHEDRON: "polyhedron", GLUED: "glued"}
 NPARAM = LAYOUT["NPARAM"]    # params per shape (float64)
 MARGIN = LAYOUT["MARGIN"]    # params[MARGIN] erodes any kind by a ball
 DEFAULT_CRUST_FRACTION = 0.05   # default crust = this * inradius: overlaps of a few % of the size stay on

@@ -4,17 +4,40 @@ One row per shape: ``kind`` (int32), ``params`` (float64[NPARAM]) and, for polyh
 offset and a count into one global float64 vertex array ``verts`` (N, 3). The core of each shape (the body
 shrunk by its crust, see base.py) has its own ``core_kind``/``core_params``/``core_voff``/``core_nv`` into the
 same ``verts``. A table built from the same shape list is bitwise identical on every rank.
+
+Glued composites (dem/shapes/glued.py): the components of every composite are further rows, after the
+rows of the shapes given (whose indices particles store, and which never move). A composite's row lists
+them: ``comp_first``/``comp_count`` into the component arrays ``comp_row`` (the component's own row) and
+``comp_pose`` (its rotation, row-major, then its offset: the pose in the composite's body frame at scale
+1). Every other row has ``comp_count`` 0.
 """
 import numpy as np
 
-from ._table import ShapeView
-from .base import NPARAM, SPHERE
+from ._table import COMPONENT_POSE as COMP_POSE, ShapeView
+from .base import GLUED, NPARAM, SPHERE
 
 
 class ShapeTable:
     def __init__(self, shapes):
         self.shapes = list(shapes)
-        n = len(self.shapes)
+        rows = list(self.shapes)                     # then the components of the composites
+        self.comp_first = np.full(len(rows), -1, np.int32)
+        self.comp_count = np.zeros(len(rows), np.int32)
+        comp_row, poses = [], []
+        for i, s in enumerate(self.shapes):
+            if s.kind == GLUED:
+                self.comp_first[i], self.comp_count[i] = len(comp_row), len(s.components)
+                for c, off, rot in s.components:
+                    comp_row.append(len(rows))
+                    rows.append(c)
+                    poses.append(np.r_[np.asarray(rot, float).ravel(), off])
+        self.comp_first = np.r_[self.comp_first, np.full(len(rows) - len(self.shapes), -1, np.int32)]
+        self.comp_count = np.r_[self.comp_count, np.zeros(len(rows) - len(self.shapes), np.int32)]
+        self.comp_row = np.array(comp_row or [0], np.int32)
+        self.comp_pose = np.array(poses, float).reshape(-1, COMP_POSE) if poses else np.zeros((1, COMP_POSE))
+        self.max_components = int(max(self.comp_count.max(initial=0), 1))
+        self.rows = rows
+        n = len(rows)
         self.kind = np.empty(n, np.int32)
         self.params = np.zeros((n, NPARAM))
         self.voff = np.zeros(n, np.int64)
@@ -28,7 +51,7 @@ class ShapeTable:
         self.inertia = np.zeros((n, 3))          # principal moments per unit density
         self.radius = np.zeros(n)                # bounding radius about the centre of mass
         blocks, total = [], 0
-        for i, s in enumerate(self.shapes):
+        for i, s in enumerate(rows):
             self.kind[i], self.params[i] = s.kind, s.params
             self.core_kind[i], self.core_params[i] = s.core_kind, s.core_params
             for verts, off, cnt in ((s.vertices, self.voff, self.nv), (s.core_vertices, self.core_voff, self.core_nv)):
@@ -58,11 +81,14 @@ class ShapeTable:
         a["radius"] = self.radius
         a["crust_rel"] = a["crust"] / a["radius"]       # crust per unit bounding radius
         a["is_sphere"] = self.is_sphere.astype(np.int32)
+        a.update(comp_first=self.comp_first, comp_count=self.comp_count, comp_row=self.comp_row,
+                 comp_pose=self.comp_pose)
         if not len(self):
             a.update(kind=np.zeros(1, np.int32), params=np.zeros((1, NPARAM)), voff=np.zeros(1, np.int64),
                      nv=np.zeros(1, np.int32), core_kind=np.zeros(1, np.int32), core_params=np.zeros((1, NPARAM)),
                      core_voff=np.zeros(1, np.int64), core_nv=np.zeros(1, np.int32), crust=np.zeros(1),
-                     radius=np.ones(1), crust_rel=np.zeros(1), is_sphere=np.ones(1, np.int32))
+                     radius=np.ones(1), crust_rel=np.zeros(1), is_sphere=np.ones(1, np.int32),
+                     comp_first=np.full(1, -1, np.int32), comp_count=np.zeros(1, np.int32))
         return {k: np.ascontiguousarray(v) for k, v in a.items()}
 
     def view(self):

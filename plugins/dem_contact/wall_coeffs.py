@@ -10,7 +10,8 @@ from . import EN, KN, KS, NCOEFF, XI_WIDTH, contact_time, frictionless, parse, r
 
 class WallCoefficients:
     """Mixin of a wall Fix. `self.table[w, t]` is the coefficient row (law.pxd reads it) of wall w and
-    particle type t; `self.history()` the per-particle history array (XI_WIDTH values per wall) or a dummy."""
+    particle type t; `self.history()` the per-particle history array (XI_WIDTH values per wall and per piece of a glued
+    composite) or a dummy."""
 
     def parse_law(self, words):
         what = f"fix {self.id} {self.style}"
@@ -34,8 +35,9 @@ class WallCoefficients:
                 raise DemError(f"fix {self.id} {self.style}: no coefficients given and no pair style to "
                                f"take them from")
         self.use_history = bool(np.any(self.table[:, 1:, KS] > 0))
-        if self.use_history:
-            sim.atom.add_field(self.history_name, (XI_WIDTH * nwalls,), np.float64, 0.0)
+        if self.use_history:     # per wall and per piece of a composite (piece c of wall w: slot c nwalls + w)
+            pieces = sim.shapes.max_components
+            sim.atom.add_field(self.history_name, (XI_WIDTH * nwalls * pieces,), np.float64, 0.0)
 
     @property
     def history_name(self):

@@ -6,6 +6,7 @@ from dem._particles import ParticleView
 from dem.errors import DemError
 from dem.history import History
 from dem.pair import Pair
+from dem.shapes.base import GLUED
 from dem_contact.pair_coeffs import PairCoefficients
 
 from . import _pair_convex
@@ -80,6 +81,9 @@ class PairConvexGJK(PairCoefficients, Pair):
 
     def init(self):
         self.use_xi = self.check_coefficients()
+        if any(s.kind == GLUED for s in self.sim.shapes.shapes):
+            raise DemError("pair_style convex/gjk: glued composites need pair_style glued/convex (it also "
+                           "serves convex particles and spheres)")
         if self.history is None:
             self.history = History(self.sim, "pair_convex", _pair_convex.HISTORY)
             self.sim.neighbor.histories.append(self.history)

@@ -5,7 +5,10 @@ per particle and surface, the shared law (dem_contact/apply.pxd) with m_ij = m_i
 
 Spheres: analytic, the contact point midway in the overlap, levers along the normal, rolling resistance
 (mu_roll r_i |F_n| against the spin relative to the wall). Shaped particles: their true body's deepest
-point (or `centroid`), lever from the centre of mass to it, no rolling resistance (Grains3D)."""
+point (or `centroid`), lever from the centre of mass to it, no rolling resistance (Grains3D). A glued
+composite touches a surface with each of its components (pieces): N_c contact points, each weighing 1/N_c
+(Model B, `average`) or 1 (Model A, with the damping of m_i / N_c: eq. 18), levers from the composite's
+centre of mass."""
 cimport numpy as cnp
 from libc.stdlib cimport malloc, free
 from dem._particles cimport ParticleView, Particles
@@ -14,7 +17,8 @@ from dem.contact._surface cimport (Surface, S_CYLINDER, S_A, S_SIDE, S_POS, S_R,
                                    S_OMEGA, S_NCOL, load_surface, bound_gap, sphere_normal, plane_touch,
                                    cylinder_touch)
 from dem.shapes._support cimport ShapeRef
-from dem.shapes._table cimport ShapeView, TableView, pose_body, round_body
+from dem.shapes._table cimport (ShapeView, TableView, body_ref, pose_body, round_body, ncomponents,
+                                component_row, pose_component)
 from dem_contact.apply cimport Body, apply_wall
 from dem_contact.law cimport XI_WIDTH, forget
 
@@ -37,6 +41,7 @@ SURFACE = {"CYLINDER": S_CYLINDER, "A": S_A, "SIDE": S_SIDE, "POS": S_POS, "R": 
 STAT = {"CONTACTS": W_CONTACTS, "MAXOV": W_MAXOV, "ENERGY": W_ENERGY, "TORQUE": W_TORQUE, "WORST_I": W_WORST_I,
         "WORST_W": W_WORST_W, "WORST_GAP": W_WORST_GAP, "BEHIND": W_BEHIND, "NSTAT": W_NSTAT}
 
+cdef double TIE_BIAS = 1e-9          # relative tilt of the support direction that breaks ties (plane_touch)
 cdef double ZERO[3]
 ZERO[:] = [0.0, 0.0, 0.0]
 
@@ -61,14 +66,17 @@ cdef inline void _wall_motion(const Surface* w, const double* q, const double* x
 
 def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const double[:, :, ::1] coeff,
           ShapeView shapes, double[:, ::1] xi, bint use_history, double dt, bint advance, bint centroid,
-          double[::1] stats):
+          bint average, double[::1] stats):
     """surfaces: rows of S_NCOL values (SURFACE). coeff[w, type]: the law row of surface w. xi: XI_WIDTH
-    history values per surface per particle. stats: the W_ sums (STAT)."""
+    history values per surface and piece per particle (piece c of surface w at XI_WIDTH (c nw + w); pieces
+    beyond the array's width keep no spring). average: Model B over the pieces touching one surface.
+    stats: the W_ sums (STAT)."""
     cdef Particles particles = view.p          # local copies: no call can change them (kept in registers)
     cdef const Particles* P = &particles
     cdef TableView table = shapes.t
     cdef const TableView* T = &table
-    cdef int i, w, d, s, nw = surfaces.shape[0]
+    cdef int i, w, d, s, c, q, npc, row, npt, nw = surfaces.shape[0]
+    cdef int hpieces = xi.shape[1] // (XI_WIDTH * max(nw, 1)) if use_history else 0
     cdef double gap, rho, energy = 0.0, torque = 0.0, ncont = 0.0, maxov = 0.0, ov
     cdef double worst_i = -1.0, worst_w = -1.0, worst_gap = 0.0, behind = 0.0
     cdef double p[3]
@@ -76,14 +84,29 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
     cdef double ww[3]
     cdef double out[6]
     cdef double R[9]
+    cdef double Rc[9]
+    cdef double xc[3]
+    cdef double bias[3]
+    cdef double weight
     cdef const double* x
     cdef Surface* surf = <Surface*>malloc(max(nw, 1) * sizeof(Surface))
+    cdef int maxp = 1
+    for q in range(T.nrows):
+        if T.comp_count[q] > maxp:
+            maxp = T.comp_count[q]
+    cdef Contact* pts = <Contact*>malloc(maxp * sizeof(Contact))
+    cdef int* ptc = <int*>malloc(maxp * sizeof(int))
+    if surf == NULL or pts == NULL or ptc == NULL:
+        free(surf)
+        free(pts)
+        free(ptc)
+        raise MemoryError()
     cdef const Surface* W
     cdef ShapeRef S
     cdef Contact con
     cdef Body A, B
     cdef bint posed, sphere
-    cdef const double* c
+    cdef const double* cf
     for w in range(nw):
         load_surface(&surfaces[w, 0], &surf[w])
     con.key = 0
@@ -102,53 +125,83 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
                 gap = bound_gap(W, x, &rho)
                 if gap >= P.radius[i] or (sphere and not sphere_normal(W, x, rho, con.n)):
                     if use_history and advance:
-                        forget(&xi[i, XI_WIDTH * w])
+                        for c in range(hpieces):
+                            forget(&xi[i, XI_WIDTH * (c * nw + w)])
                     continue
+                npt = 0
                 if sphere:
-                    con.central = True
-                    con.delta = P.radius[i] - gap
-                    con.arm_a = P.radius[i] - 0.5 * con.delta
+                    pts[0].n[0], pts[0].n[1], pts[0].n[2] = con.n[0], con.n[1], con.n[2]
+                    pts[0].central = True
+                    pts[0].delta = P.radius[i] - gap
+                    pts[0].arm_a = P.radius[i] - 0.5 * pts[0].delta
                     for d in range(3):
-                        con.p[d] = x[d] - con.arm_a * con.n[d]
+                        pts[0].p[d] = x[d] - pts[0].arm_a * pts[0].n[d]
+                    ptc[0] = 0
+                    npt = 1
                 else:
                     if not posed:
                         pose_body(T, s, &P.quat[4 * i], P.radius[i], &S, R)
                         posed = True
-                    con.central = False
-                    if W.cylinder:
-                        con.delta = cylinder_touch(&S, R, x, W, centroid, 1e-9 * P.radius[i], con.n, con.p)
+                    npc = ncomponents(T, s)
+                    for c in range(npc):
+                        row = component_row(T, s, c)
+                        body_ref(T, row, &S)
+                        pose_component(T, s, c, R, x, Rc, xc)
+                        for d in range(3):    # ties between equally deep points: away from the centre
+                            bias[d] = TIE_BIAS * (xc[d] - x[d]) / P.radius[i]
+                        pts[npt].central = False
+                        if W.cylinder:
+                            pts[npt].delta = cylinder_touch(&S, Rc, xc, W, centroid, 1e-9 * P.radius[i],
+                                                            pts[npt].n, pts[npt].p)
+                        else:
+                            pts[npt].delta = plane_touch(&S, Rc, xc, W, centroid, 1e-9 * P.radius[i],
+                                                         bias if npc > 1 else NULL, pts[npt].n, pts[npt].p)
+                        if pts[npt].delta <= 0.0:
+                            if use_history and advance and c < hpieces:
+                                forget(&xi[i, XI_WIDTH * (c * nw + w)])
+                            continue
+                        ptc[npt] = c
+                        npt += 1
+                weight = 1.0 / npt if average and npt > 1 else 1.0
+                for q in range(npt):
+                    con.delta = pts[q].delta
+                    con.central = pts[q].central
+                    con.arm_a = pts[q].arm_a
+                    for d in range(3):
+                        con.n[d] = pts[q].n[d]
+                        con.p[d] = pts[q].p[d]
+                    con.key = ptc[q]
+                    con.weight = weight
+                    ncont += 1.0
+                    ov = con.delta / (2.0 * P.radius[i])
+                    if ov > maxov:
+                        maxov = ov
+                        worst_i, worst_w, worst_gap = i, w, gap
+                    if gap < 0.0:
+                        behind += 1.0
+                    if W.spin >= 0:
+                        _wall_motion(W, con.p, x, p, vw, ww)
+                        B.v = vw
+                        B.w = ww
                     else:
-                        con.delta = plane_touch(&S, R, x, W, centroid, 1e-9 * P.radius[i], con.n, con.p)
-                    if con.delta <= 0.0:
-                        if use_history and advance:
-                            forget(&xi[i, XI_WIDTH * w])
-                        continue
-                ncont += 1.0
-                ov = con.delta / (2.0 * P.radius[i])
-                if ov > maxov:
-                    maxov = ov
-                    worst_i, worst_w, worst_gap = i, w, gap
-                if gap < 0.0:
-                    behind += 1.0
-                if W.spin >= 0:
-                    _wall_motion(W, con.p, x, p, vw, ww)
-                    B.v = vw
-                    B.w = ww
-                else:
-                    B.v = ZERO
-                    B.w = ZERO
-                A.x = x
-                A.v = &P.v[3 * i]
-                A.w = &P.omega[3 * i]
-                A.f = &P.f[3 * i]
-                A.t = &P.torque[3 * i]
-                c = &coeff[w, P.type[i], 0]
-                energy += apply_wall(c, &con, &A, &B, P.rmass[i], P.radius[i] if sphere else 0.0,
-                                    &xi[i, XI_WIDTH * w] if use_history else NULL, dt, advance, out)
-                if W.spin >= 0:       # torque about the turning axis: e . (p x F) + e . rolling torque
-                    torque += p[(W.spin + 1) % 3] * out[(W.spin + 2) % 3] - p[(W.spin + 2) % 3] * out[(W.spin + 1) % 3]
-                    torque += out[3 + W.spin]
+                        B.v = ZERO
+                        B.w = ZERO
+                    A.x = x
+                    A.v = &P.v[3 * i]
+                    A.w = &P.omega[3 * i]
+                    A.f = &P.f[3 * i]
+                    A.t = &P.torque[3 * i]
+                    cf = &coeff[w, P.type[i], 0]
+                    energy += apply_wall(cf, &con, &A, &B, P.rmass[i] if average or npt == 1 else P.rmass[i] / npt,
+                                        P.radius[i] if sphere else 0.0,
+                                        &xi[i, XI_WIDTH * (ptc[q] * nw + w)] if ptc[q] < hpieces else NULL,
+                                        dt, advance, out)
+                    if W.spin >= 0:   # torque about the turning axis: e . (p x F) + e . rolling torque
+                        torque += p[(W.spin + 1) % 3] * out[(W.spin + 2) % 3] - p[(W.spin + 2) % 3] * out[(W.spin + 1) % 3]
+                        torque += out[3 + W.spin]
     free(surf)
+    free(pts)
+    free(ptc)
     stats[W_CONTACTS] = ncont
     stats[W_MAXOV] = maxov
     stats[W_ENERGY] = energy

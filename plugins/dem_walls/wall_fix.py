@@ -48,7 +48,8 @@ class WallFix(WallCoefficients):
     def compute(self, advance):
         sim = self.sim
         _walls.walls(ParticleView(sim.atom), int(self.groupbit), self.surfaces(), self.table, self.shape_view,
-                     self.history(), self.use_history, sim.update.dt, advance, self.centroid, self.stats)
+                     self.history(), self.use_history, sim.update.dt, advance, self.centroid,
+                     bool(getattr(sim.pair, "multipoint_average", True)), self.stats)
         self.ncontacts = int(self.stats[STAT["CONTACTS"]])
         self.max_overlap = float(self.stats[STAT["MAXOV"]])
         self.energy = float(self.stats[STAT["ENERGY"]])
