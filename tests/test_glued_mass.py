@@ -137,15 +137,15 @@ def test_crossing_boxes_on_lattice_planes_are_exact():
 def test_crossing_boxes_turned():
     # the same union turned and moved: faces cut cells at random, the digitisation error is ~ area x h / 2
     # of random sign: at 200 points (h = 1/200 of the long side) a first-order bound is ~ area x h / V
-    # ~ 0.3 % (measured 3e-5: the signs cancel); the error estimate must be of the size of the true error
-    # or above it (measured estimate 1.9e-4)
+    # ~ 0.3 % (measured 3e-5: the signs cancel); the error estimate must cover the true error (measured
+    # estimate 3.8e-4) without being wildly above the first-order bound
     rng = np.random.default_rng(5)
     comps, V, c, I = crossing_boxes(random_rotation(rng), np.array([1.0, -2.0, 0.5]))
     p = gm.union_mass_properties(comps, 200)
     ev, ei = abs(p["volume"] / V - 1), rel_tensor(p["inertia"], I)
     assert ev < 3e-3 and ei < 3e-3
     assert np.linalg.norm(p["centre"] - c) < 3e-3
-    assert max(ev, ei) < 3 * p["error"]       # estimate of the right size (not an upper bound per sample)
+    assert max(ev, ei) <= p["error"] < 3e-3
 
 
 def test_coaxial_cylinders():
@@ -236,7 +236,8 @@ def test_sliced_cylinder_exact_sums():
 def test_glued_cylinder_table1_at_500_points():
     # Part III: < 0.2 % on volume and inertia from 500 points per direction. The ends are on the lattice
     # box (exact): only the rim is digitised. Measured at 500: volume +7.4e-5, inertia +1.2e-4 (diameter)
-    # and +1.5e-4 (axis); Table 1's glued values 2.66413e-7 m^3, 1.9674e-9 and 2.4793e-9 kg m^2
+    # and +1.5e-4 (axis), error estimate 8.5e-4; Table 1's glued values 2.66413e-7 m^3, 1.9674e-9 and
+    # 2.4793e-9 kg m^2 (theirs err by +2.3e-5, +7.5e-4, -2.6e-4 from the true cylinder)
     cyl = Cylinder(D / 2, LEN)
     p = gm.union_mass_properties(sliced_cylinder(6), 500)
     assert p["cells"] == (500, 500, 331)
