@@ -73,6 +73,11 @@ class SimShapes(ShapeTable):
             m = self._meshes[idx] = (np.asarray(V, float), np.asarray(F, np.int64))
         return m
 
+    def convex_pieces(self, idx):
+        """The body-frame convex pieces of row idx at scale 1: a list of (vertices, faces) meshes whose union
+        is the body (one piece, the row's mesh, for the convex shapes)."""
+        return [self.mesh(idx)]
+
 
 def table(sim):
     """sim.shapes (empty until a shape is defined)."""
