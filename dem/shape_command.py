@@ -58,8 +58,8 @@ class SimShapes(ShapeTable):
                            hint="define it first: shape NAME KIND params ...") from None
 
     def convex_pieces(self, idx, resolution=24):
-        """Body-frame convex surfaces [(vertices, faces)] of row idx at scale 1: a composite's posed
-        components, any other shape itself."""
+        """The body-frame convex pieces of row idx at scale 1: a list of (vertices, faces) meshes whose union
+        is the body (a composite's posed components; one piece, the row's mesh, for the convex shapes)."""
         shape = self.shapes[idx]
         if hasattr(shape, "pieces"):
             return shape.pieces(resolution)
@@ -72,11 +72,6 @@ class SimShapes(ShapeTable):
             V, F = self.shapes[idx].mesh(resolution)
             m = self._meshes[idx] = (np.asarray(V, float), np.asarray(F, np.int64))
         return m
-
-    def convex_pieces(self, idx):
-        """The body-frame convex pieces of row idx at scale 1: a list of (vertices, faces) meshes whose union
-        is the body (one piece, the row's mesh, for the convex shapes)."""
-        return [self.mesh(idx)]
 
 
 def table(sim):

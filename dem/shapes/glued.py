@@ -5,8 +5,9 @@ the composite's frame at ``offset`` (its centre of mass) and turned by ``rotatio
 columns). Components may overlap.
 
 Mass properties of the union (Part III sec 2.3): exact sums and parallel axes when no two components
-overlap (slices of a cylinder, the 8 cubes of a cube); otherwise the structured-lattice integration of
-eq. 7-8 (`glued_mass`), cached in the shape database (`shape_db`). The composite is then moved to its
+overlap (slices of a cylinder, the 8 cubes of a cube), exact cells of the face-plane grid for boxes turned
+alike (crosses, tile spacers); otherwise the structured-lattice integration of eq. 7-8 (`glued_mass`),
+cached in the shape database (`shape_db`). The composite is then moved to its
 centre of mass and principal axes like every shape: ``centroid`` and ``rotation`` record the move, and
 ``components`` hold the body-frame poses that the shape table and the kernels use.
 
@@ -20,6 +21,7 @@ from .polyhedron import principal_frame
 
 DEFAULT_RESOLUTION = 500      # lattice points along the longest side: < 0.2 % error (Part III Fig. 3)
 _MESH_RESOLUTION = 96         # far-point search on curved components (see _far_point)
+_LATTICE_NOISE = 1e-6         # relative round-off of lattice sums: a symmetric union's moments agree to it
 
 
 def _rotation(rot):
@@ -67,7 +69,7 @@ class Glued(Shape):
     name = "glued"
 
     def __init__(self, components, resolution=DEFAULT_RESOLUTION, db=None, comm=None, name=None, _props=None):
-        from . import glued_mass
+        from . import glued_mass, shape_db
         if name:
             self.name = name
         comps = []
@@ -87,14 +89,17 @@ class Glued(Shape):
         elif len(comps) == 1 or not glued_mass.components_overlap(comps):
             volume, com, I = glued_mass.exact_mass_properties(comps)
             self.mass_method, self.mass_error = "exact", 0.0
+        elif glued_mass.aligned_boxes(comps):         # overlapping boxes turned alike: exact grid cells
+            volume, com, I = glued_mass.aligned_boxes_mass_properties(comps)
+            self.mass_method, self.mass_error = "exact", 0.0
         else:
-            p = glued_mass.cached_union_mass_properties(comps, self.resolution, db=db, comm=comm)
+            p = shape_db.cached_union_mass_properties(comps, self.resolution, db=db, comm=comm)
             volume, com, I = p["volume"], p["centre"], p["inertia"]
             self.mass_method, self.mass_error = "lattice", float(p["error"])
         com = np.asarray(com, dtype=float)
         I = np.asarray(I, dtype=float)
         if self.mass_method == "lattice":
-            I = _clean_tensor(I, max(self.mass_error, 1e-9))
+            I = _clean_tensor(I, _LATTICE_NOISE)
         R, moments = principal_frame(I)
         self.centroid, self.rotation = com, R
         self.volume = float(volume)

@@ -31,7 +31,7 @@ centre of mass (|dc| / radius of gyration). tools/glued_convergence.py checks it
 import numpy as np
 
 from . import _lattice
-from .base import MARGIN, NPARAM, POLYHEDRON
+from .base import BOX, MARGIN, NPARAM, POLYHEDRON
 
 __all__ = ["union_mass_properties", "exact_mass_properties", "components_overlap", "rotation_to_quaternion",
            "union_bounding_box", "lattice_cells", "DEFAULT_RESOLUTION", "OVERLAP_TOL"]
@@ -60,6 +60,9 @@ def _components(components):
     return out
 
 
+_WIDEN = 1e-9      # of the tight box (union_bounding_box): far above round-off, far below a cell
+
+
 def _frame_box(shape, off, rot):
     """Tight bounding box (lo, hi) of a posed component in the composite frame, from its support function:
     the extent along +-e_a is e_a . (off + R s(R^T e_a))."""
@@ -75,9 +78,15 @@ def _body_box(shape):
 
 
 def union_bounding_box(components):
-    """(lo, hi) of the union of the posed components in the composite frame (tight: support functions)."""
+    """(lo, hi) of the union of the posed components in the composite frame: the tight box (support
+    functions) widened by the relative _WIDEN about its centre. Faces of components that lie on cell
+    centres of the tight box (a beam of a cross whose width is an odd number of cells) are then
+    consistently just outside every centre, on both sides: without it round-off includes them on one side
+    and not the other, which shifts the centre of mass of a symmetric union by a fraction of a cell."""
     boxes = [_frame_box(*c) for c in _components(components)]
-    return np.min([b[0] for b in boxes], axis=0), np.max([b[1] for b in boxes], axis=0)
+    lo, hi = np.min([b[0] for b in boxes], axis=0), np.max([b[1] for b in boxes], axis=0)
+    mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo) * (1.0 + _WIDEN)
+    return mid - half, mid + half
 
 
 def lattice_cells(lo, hi, resolution):
@@ -214,6 +223,53 @@ def exact_mass_properties(components):
         d = o - com
         I += R @ np.diag(s.principal_moments) @ R.T + v * (d @ d * np.eye(3) - np.outer(d, d))
     return V, com, 0.5 * (I + I.T)
+
+
+def aligned_boxes(components):
+    """Whether every component is a box and all have their edges along the same three axes (crosses, tile
+    spacers, boxes turned by quarter turns of each other): their union is
+    then a union of cells of the grid of their face planes, exactly (aligned_boxes_mass_properties)."""
+    comps = _components(components)
+    return all(s.kind == BOX and _axis_permutation(comps[0][2], R) is not None for s, _, R in comps)
+
+
+def _axis_permutation(R0, R):
+    """|R0^T R| when it is a permutation matrix (R turns a box onto the axes of R0), else None."""
+    P = np.abs(R0.T @ R)
+    if np.all((abs(P) < 1e-14) | (abs(P - 1.0) < 1e-14)) and np.allclose(P.sum(0), 1.0) and np.allclose(P.sum(1), 1.0):
+        return np.round(P)
+    return None
+
+
+def aligned_boxes_mass_properties(components):
+    """(volume, centre, inertia about the centre) of a union of boxes turned alike, per unit density,
+    exact (to round-off) however they overlap: the face planes of all boxes cut space into a grid of
+    cells, each wholly inside or outside the union (tested at its centre), whose box moments are summed
+    and turned back into the composite frame."""
+    comps = _components(components)
+    R = comps[0][2]
+    size = np.array([_axis_permutation(R, Rc) @ s.size for s, _, Rc in comps])   # on the common axes
+    cen = np.array([R.T @ o for _, o, _ in comps])
+    lo, hi = cen - 0.5 * size, cen + 0.5 * size
+    cuts = [np.unique(np.r_[lo[:, a], hi[:, a]]) for a in range(3)]
+    V, S1, S2 = 0.0, np.zeros(3), np.zeros((3, 3))
+    for i in range(len(cuts[0]) - 1):
+        for j in range(len(cuts[1]) - 1):
+            for k in range(len(cuts[2]) - 1):
+                a = np.array([cuts[0][i], cuts[1][j], cuts[2][k]])
+                b = np.array([cuts[0][i + 1], cuts[1][j + 1], cuts[2][k + 1]])
+                c = 0.5 * (a + b)
+                if not np.any(np.all((lo <= c) & (c <= hi), axis=1)):
+                    continue
+                h = b - a
+                v = float(np.prod(h))
+                V += v
+                S1 += v * c
+                S2 += v * (np.outer(c, c) + np.diag(h * h) / 12.0)      # int x x^T over the cell
+    com = S1 / V
+    M = S2 - V * np.outer(com, com)                                     # about the centre of mass
+    I = np.trace(M) * np.eye(3) - M
+    return V, R @ com, R @ (0.5 * (I + I.T)) @ R.T
 
 
 def rotation_to_quaternion(R):
