@@ -67,6 +67,7 @@ class Glued(Shape):
     a path, ``None`` for the default, ``"none"`` for no cache); ``comm`` splits the lattice over ranks."""
     kind = GLUED
     name = "glued"
+    mass_cached = False       # the lattice result came from the shape database
 
     def __init__(self, components, resolution=DEFAULT_RESOLUTION, db=None, comm=None, name=None, _props=None):
         from . import glued_mass, shape_db
@@ -96,6 +97,7 @@ class Glued(Shape):
             p = shape_db.cached_union_mass_properties(comps, self.resolution, db=db, comm=comm)
             volume, com, I = p["volume"], p["centre"], p["inertia"]
             self.mass_method, self.mass_error = "lattice", float(p["error"])
+            self.mass_cached = bool(p.get("cached", False))
         com = np.asarray(com, dtype=float)
         I = np.asarray(I, dtype=float)
         if self.mass_method == "lattice":
