@@ -40,6 +40,7 @@ cdef struct TableView:
     const int* comp_count
     const int* comp_row
     const double* comp_pose
+    const double* half         # half sides of a centred bounding box on the body axes, at scale 1 (3 per row)
 
 
 cdef class ShapeView:

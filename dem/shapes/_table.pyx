@@ -3,7 +3,8 @@
 import numpy as np
 
 COLUMNS = ("kind", "params", "voff", "nv", "core_kind", "core_params", "core_voff", "core_nv", "crust", "crust_rel",
-           "radius", "is_sphere", "verts", "comp_first", "comp_count", "comp_row", "comp_pose")
+           "radius", "is_sphere", "verts", "comp_first", "comp_count", "comp_row", "comp_pose",
+           "half")
 COMPONENT_POSE = COMP_POSE            # (for Python: table.py)
 
 
@@ -15,7 +16,7 @@ cdef class ShapeView:
         cdef const int[::1] kind = a["kind"], nv = a["nv"], core_kind = a["core_kind"]
         cdef const int[::1] core_nv = a["core_nv"], is_sphere = a["is_sphere"]
         cdef const int[::1] comp_first = a["comp_first"], comp_count = a["comp_count"], comp_row = a["comp_row"]
-        cdef const double[:, ::1] comp_pose = a["comp_pose"]
+        cdef const double[:, ::1] comp_pose = a["comp_pose"], half = a["half"]
         cdef const i64[::1] voff = a["voff"], core_voff = a["core_voff"]
         cdef const double[:, ::1] params = a["params"], core_params = a["core_params"], verts = a["verts"]
         cdef const double[::1] crust = a["crust"], crust_rel = a["crust_rel"], radius = a["radius"]
@@ -38,6 +39,7 @@ cdef class ShapeView:
         self.t.comp_count = &comp_count[0]
         self.t.comp_row = &comp_row[0]
         self.t.comp_pose = &comp_pose[0, 0]
+        self.t.half = &half[0, 0]
 
     def __len__(self):
         return self.t.nrows

@@ -50,6 +50,7 @@ class ShapeTable:
         self.volume = np.zeros(n)
         self.inertia = np.zeros((n, 3))          # principal moments per unit density
         self.radius = np.zeros(n)                # bounding radius about the centre of mass
+        self.half = np.zeros((n, 3))             # half sides of a bounding box on the body axes (centred)
         blocks, total = [], 0
         for i, s in enumerate(rows):
             self.kind[i], self.params[i] = s.kind, s.params
@@ -62,6 +63,9 @@ class ShapeTable:
                     total += len(verts)
             self.crust[i], self.volume[i], self.radius[i] = s.crust, s.volume, s.bounding_radius
             self.inertia[i] = s.principal_moments
+            if s.kind != GLUED:
+                ext = s.support(np.vstack([np.eye(3), -np.eye(3)]))
+                self.half[i] = np.maximum(np.diag(ext[:3]), -np.diag(ext[3:]))
         self.verts = np.ascontiguousarray(np.vstack(blocks) if blocks else np.zeros((1, 3)))
         self.is_sphere = self.kind == SPHERE
         self._view = None
@@ -82,13 +86,14 @@ class ShapeTable:
         a["crust_rel"] = a["crust"] / a["radius"]       # crust per unit bounding radius
         a["is_sphere"] = self.is_sphere.astype(np.int32)
         a.update(comp_first=self.comp_first, comp_count=self.comp_count, comp_row=self.comp_row,
-                 comp_pose=self.comp_pose)
+                 comp_pose=self.comp_pose, half=self.half)
         if not len(self):
             a.update(kind=np.zeros(1, np.int32), params=np.zeros((1, NPARAM)), voff=np.zeros(1, np.int64),
                      nv=np.zeros(1, np.int32), core_kind=np.zeros(1, np.int32), core_params=np.zeros((1, NPARAM)),
                      core_voff=np.zeros(1, np.int64), core_nv=np.zeros(1, np.int32), crust=np.zeros(1),
                      radius=np.ones(1), crust_rel=np.zeros(1), is_sphere=np.ones(1, np.int32),
-                     comp_first=np.full(1, -1, np.int32), comp_count=np.zeros(1, np.int32))
+                     comp_first=np.full(1, -1, np.int32), comp_count=np.zeros(1, np.int32),
+                     half=np.zeros((1, 3)))
         return {k: np.ascontiguousarray(v) for k, v in a.items()}
 
     def view(self):

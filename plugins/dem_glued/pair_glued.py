@@ -20,7 +20,8 @@ class PairGluedConvex(PairCoefficients, Pair):
     Contacts between glued composites (`shape NAME glued ...`, `cross3d`, ...), convex particles of any
     shape of the table and plain spheres: one pair style serves them all. Grains3D Part III sec 2.5: the
     particles' bounding spheres (neighbor list), then the bounding spheres of their convex pieces (a
-    composite's components; a convex particle or a sphere is its own single piece), then the crust
+    composite's components; a convex particle or a sphere is its own single piece) and their bounding
+    boxes (separating axes: the spheres of elongated beams are loose, Part III Fig. 29), then the crust
     contact (GJK on the pieces shrunk by their crust, EPA for deep overlaps) of each piece pair, or the
     analytic contact of two sphere pieces (multisphere clumps). Each contact point acts through the
     Grains3D law (as `pair_style convex/gjk`) with the reduced mass of the two particles and levers
@@ -109,7 +110,7 @@ class PairGluedConvex(PairCoefficients, Pair):
         self.max_overlap = float(st["max_overlap"])
         self.energy = float(st["energy"])
         if advance:
-            for key in ("contacts", "points", "gjk", "epa", "piece_pairs", "piece_candidates"):
+            for key in ("contacts", "points", "gjk", "epa", "piece_pairs", "piece_spheres", "piece_candidates"):
                 self.stats[key] += st[key]
         if self.ncontacts:
             a = sim.atom.data
