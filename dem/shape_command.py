@@ -356,7 +356,8 @@ class ShapeCommand(Command):
             sim.shapes = t.added(name, shape, words)
             sim.print(f"Shape {name} ({kind}, {len(shape.components)} components): volume {shape.volume:.6g} "
                       f"({shape.mass_method}" + (f", estimated error {shape.mass_error:.2g}" if shape.mass_error
-                                                 else "") + f"), bounding radius {shape.bounding_radius:.6g}, "
+                                                 else "") + (", from the shape database" if shape.mass_cached
+                                                             else "") + f"), bounding radius {shape.bounding_radius:.6g}, "
                       f"principal moments / density {' '.join(f'{m:.6g}' for m in shape.principal_moments)}")
             return
         values, crust, file = [], None, None

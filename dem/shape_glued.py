@@ -123,7 +123,21 @@ class ShapeMultisphere(GluedKind):
 
 
 class ShapeGlued(GluedKind):
-    """shape NAME glued component KIND params... [at X Y Z] [rotate AX AY AZ DEG] ... | glued file F"""
+    """shape NAME glued component KIND params... [at X Y Z] [rotate AX AY AZ DEG] [component ...] | file F
+    [crust C] [resolution N] [db FILE|none]
+
+    A non-convex particle glued from convex components (Grains3D Part III): KIND is any convex kind of the
+    shape command with its parameters, placed with its centre of mass at (X, Y, Z) and turned by DEG
+    degrees about (AX, AY, AZ). A file lists one component per line in the same words without
+    `component` (`#` comments). Mass properties: exact without overlaps and for boxes with common axes,
+    else the lattice at `resolution` points along the longest side (default 500), cached in the shape
+    database `db` (default $DEM_SHAPE_DB, else ~/.cache/dem/shapes.h5). Contacts: pair_style
+    glued/convex. See docs/composites.md.
+
+    Example::
+
+        shape tee glued component box 0.006 0.001 0.001 component box 0.001 0.001 0.004 at 0 0 -0.0025
+    """
     style = "glued"
     usage = ("component KIND params... [at X Y Z] [rotate AX AY AZ DEG] ... | file F  "
              "[crust C] [resolution N] [db FILE|none]")
