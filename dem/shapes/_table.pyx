@@ -9,10 +9,14 @@ COMPONENT_POSE = COMP_POSE            # (for Python: table.py)
 
 
 cdef class ShapeView:
-    """Built from the arrays of ShapeTable.kernel_arrays() (or the one-row dummy of an empty table)."""
+    """Built from the arrays of ShapeTable.kernel_arrays() (or the one-row dummy of an empty table); the
+    composite columns may be left out (a table without composites)."""
 
     def __cinit__(self, dict arrays):
-        a = {k: np.ascontiguousarray(arrays[k]) for k in COLUMNS}
+        n = len(arrays["kind"])
+        defaults = {"comp_first": np.full(n, -1, np.int32), "comp_count": np.zeros(n, np.int32),   # no composite
+                    "comp_row": np.zeros(1, np.int32), "comp_pose": np.zeros((1, COMP_POSE)), "half": np.zeros((n, 3))}
+        a = {k: np.ascontiguousarray(arrays[k] if k in arrays else defaults[k]) for k in COLUMNS}
         cdef const int[::1] kind = a["kind"], nv = a["nv"], core_kind = a["core_kind"]
         cdef const int[::1] core_nv = a["core_nv"], is_sphere = a["is_sphere"]
         cdef const int[::1] comp_first = a["comp_first"], comp_count = a["comp_count"], comp_row = a["comp_row"]
