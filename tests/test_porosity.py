@@ -1,4 +1,4 @@
-"""compute porosity: structured-lattice voxelisation of the space occupied by spheres (Part III sec 4.1)."""
+"""compute porosity: structured-lattice voxelisation of the space occupied by particles (Part III sec 4.1)."""
 import math
 
 import numpy as np
@@ -84,3 +84,30 @@ def test_cylinder_region_and_errors():
     with pytest.raises(DemError):
         sim.command("thermo_style custom step c_por[7]")
         sim.thermo_keyword("c_por[7]")
+
+
+@pytest.mark.parametrize("shape", ["cube 0.002", "tetrahedron 0.003", "cylinder 0.001 0.0025", "cross3d 0.003",
+                                   "cross2d 0.003", "spherecylinder 0.001 0.0012 9 resolution 200"])
+def test_shaped_particles_true_volume(shape, tmp_path, monkeypatch):
+    """Non-overlapping shaped particles (random orientations, periodic box: some cut by the boundaries)
+    and glued composites: the solid volume is the sum of their true volumes, not of their bounding spheres.
+    With 30 points per smallest bounding diameter the voxel error of randomly posed bodies averages out:
+    measured 0.01-0.08 % (cross beams are 0.75 mm wide: ~10 points across); bound 1.5 % (bounding spheres
+    would give 1.5x to 8.2x the volume)."""
+    monkeypatch.setenv("DEM_SHAPE_DB", str(tmp_path / "db.h5"))
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+        units si
+        boundary p p p
+        region box block 0 0.02 0 0.02 0 0.02
+        create_box 1 box
+        shape s {shape}
+        create_atoms 1 random 40 2024 box shape s quat random density 1000
+        compute por all porosity box resolution 30
+    """)
+    n = sim.atom.natoms
+    exact = n * float(sim.shapes.volume[0])
+    solid = sim.thermo_keyword("c_por[4]")
+    assert solid == pytest.approx(exact, rel=1.5e-2)
+    r = float(sim.atom.local("radius")[0])
+    assert solid < 0.9 * n * 4 / 3 * math.pi * r ** 3
