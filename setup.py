@@ -36,7 +36,7 @@ setup(
     package_data={"": ["*.pxd", "*.pyx"]},
     ext_modules=extensions,
     install_requires=["numpy>=1.24", "h5py", "pluggy>=1.0", "scipy", "matplotlib"],
-    extras_require={"mpi": ["mpi4py", "mpich"], "test": ["pytest", "mpi4py", "mpich", "vtk", "coal", "setuptools>=64", "wheel"]},
+    extras_require={"mpi": ["mpi4py", "mpich"], "test": ["pytest", "mpi4py", "mpich", "vtk", "ovito", "coal", "setuptools>=64", "wheel"]},
     entry_points={
         "console_scripts": ["dem = dem.cli:main"],
         "dem": ["core = dem.builtin", "sphere = dem_sphere", "fixes = dem_fixes", "process = dem_process",

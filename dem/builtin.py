@@ -3,6 +3,7 @@ from .balance import BALANCE_STYLES
 from .commands import COMMANDS
 from .compute import COMMANDS as COMPUTE_COMMANDS
 from .create_atoms import CreateAtoms, SetCommand
+from .dump_custom import DumpCustom
 from .dump_h5 import DumpH5
 from .dump_vtk import DumpVTK
 from .hookspecs import hookimpl
@@ -16,4 +17,4 @@ from .shape_command import SHAPE_STYLES
 @hookimpl
 def dem_styles():
     return (COMMANDS + COMPUTE_COMMANDS + [CreateAtoms, SetCommand, ReadData] + RESTART_COMMANDS + REGIONS
-            + INTEGRATORS + BALANCE_STYLES + SHAPE_STYLES + [DumpH5, DumpVTK])
+            + INTEGRATORS + BALANCE_STYLES + SHAPE_STYLES + [DumpH5, DumpVTK, DumpCustom])

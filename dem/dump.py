@@ -4,12 +4,13 @@
 
 * ID: a name for the dump (``undump ID`` removes it).
 * group-ID: only particles of this group are written.
-* style: ``h5`` (one HDF5 file + XDMF sidecar, see :class:`dem.dump_h5.DumpH5`) or ``vtk`` (one VTK
-  XML ``.vtu`` file per frame + ``.pvd`` collection, see :class:`dem.dump_vtk.DumpVTK`).
+* style: ``h5`` (one HDF5 file + XDMF sidecar, see :class:`dem.dump_h5.DumpH5`), ``vtk`` (one VTK
+  XML ``.vtu`` file per frame + ``.pvd`` collection, see :class:`dem.dump_vtk.DumpVTK`) or ``custom``
+  (LAMMPS text snapshots for OVITO, see :class:`dem.dump_custom.DumpCustom`).
 * N: write a frame every N steps (and at the start of a run when its step is a multiple of N).
 * file: where to write (style specific).
 
-Keyword common to every style:
+Keyword of the h5 and vtk styles (``custom`` takes LAMMPS column names instead):
 
 * ``fields name name ...``: the per-particle arrays to write, among ``id type position velocity omega
   orientation radius mass shape`` (default: all of them). ``position`` is always written (the points
@@ -30,6 +31,10 @@ radius         radius         (n,)        (bounding) radius
 mass           rmass          (n,)        mass
 shape          shape          (n,)        shape index (-1: sphere of the particle's radius)
 =============  =============  ==========  ===================================================
+
+``dump_modify ID every N`` changes N of any dump; ``dump_modify ID sort id|off`` is accepted by every
+style (frames are ordered by id); styles may take more keywords (``custom``: sort, format, pad, time,
+append).
 
 Only rank 0 writes files; every rank takes part in gathering the data (``write`` is collective).
 Writing a style: subclass :class:`Dump`, set ``style`` and ``keywords``, implement ``write_frame(frame)``
@@ -142,7 +147,42 @@ class Dump:
         chosen.add("position")
         self.fields = [name for name in FIELDS if name in chosen]   # canonical order
 
+    # ----- dump_modify ----------------------------------------------------------------------------
+    def modify(self, args):
+        """``dump_modify ID keyword value ...``: ``every N``; ``sort id|off`` (accepted: frames are always
+        ordered by id). Styles with more keywords override this."""
+        i = 0
+        while i < len(args):
+            word = args[i]
+            if word not in ("every", "sort"):
+                raise DemError(f"dump_modify {self.id}: unknown keyword '{word}' for dump {self.style}"
+                               f"{did_you_mean(word, ['every', 'sort'])}",
+                               hint=f"dump {self.style} takes 'every N' and 'sort id|off' (its frames are "
+                                    "ordered by id)")
+            if i + 1 >= len(args):
+                raise DemError(f"dump_modify {self.id}: {word} needs a value")
+            value = args[i + 1]
+            if word == "every":
+                self.set_every(value)
+            elif value not in ("id", "off"):
+                raise DemError(f"dump_modify {self.id}: dump {self.style} writes its particles ordered by "
+                               f"id: sort must be id or off, got '{value}'")
+            i += 2
+
+    def set_every(self, value):
+        try:
+            every = int(value)
+        except ValueError:
+            raise DemError(f"dump_modify {self.id}: every must be an integer, got '{value}'") from None
+        if every <= 0:
+            raise DemError(f"dump_modify {self.id}: every must be > 0")
+        self.every = every
+
     # ----- gathering ------------------------------------------------------------------------------
+    def atom_field(self, name):
+        """The atom field gathered for the frame array `name`."""
+        return FIELDS[name]
+
     def gathered_fields(self):
         """Names (keys of FIELDS) to gather for a frame: the written fields, plus what the geometry
         needs (subclasses may add: e.g. shape and orientation to pose meshes)."""
@@ -152,7 +192,7 @@ class Dump:
         """Collective: gather the group's particles ordered by id. Returns a Frame on rank 0, else None."""
         sim = self.sim
         names = self.gathered_fields()
-        raw = {name: sim.gather(FIELDS[name]) for name in names}
+        raw = {name: sim.gather(self.atom_field(name)) for name in names}
         mask = sim.gather("mask")
         if sim.comm.me != 0:
             return None

@@ -83,28 +83,42 @@ def xdmf_grid(h5name, step, time, datasets):
     return "\n".join(lines) + "\n"
 
 
-def xdmf_surface(h5name, step, time, particle_grid, npoints, ntris):
+# per-triangle arrays of the surfaces (cell data): the values of the particle each triangle belongs to
+SURFACE_CELL_FIELDS = ("id", "type", "velocity", "omega", "shape")
+
+
+def xdmf_surface(h5name, step, time, particle_grid, npoints, ntris, cell_fields=None):
     """XDMF of a frame with posed particle surfaces: a spatial collection of the particle grid (points)
-    and a triangle grid of the surfaces (point attribute ``id``: the particle of each vertex)."""
+    and a triangle grid of the surfaces (point attribute ``id``: the particle of each vertex; cell
+    attributes ``cell_fields`` {name: (shape, dtype)}: the particle's values on each triangle). With
+    npoints 0 the collection holds the particle grid only, or nothing in a frame without particles (every
+    frame then reads as the same kind of data set)."""
     base = f"/frames/{frame_name(step)}/surface"
     inner = "\n".join("  " + line for line in particle_grid.rstrip("\n").split("\n"))
     inner = inner.replace(f'<Grid Name="step_{int(step)}"', '<Grid Name="particles"', 1)
     inner = "\n".join(line for line in inner.split("\n") if "<Time " not in line)
     lines = [f'      <Grid Name="step_{int(step)}" GridType="Collection" CollectionType="Spatial">',
-             f'        <Time Value="{float(time)!r}"/>',
-             inner,
-             '        <Grid Name="surfaces" GridType="Uniform">',
-             f'          <Topology TopologyType="Triangle" NumberOfElements="{ntris}">',
-             "            " + _data_item(h5name, f"{base}/triangles", (ntris, 3), np.int64),
-             "          </Topology>",
-             '          <Geometry GeometryType="XYZ">',
-             "            " + _data_item(h5name, f"{base}/points", (npoints, 3), np.float64),
-             "          </Geometry>",
-             '          <Attribute Name="id" AttributeType="Scalar" Center="Node">',
-             "            " + _data_item(h5name, f"{base}/id", (npoints,), np.int64),
-             "          </Attribute>",
-             "        </Grid>",
-             "      </Grid>"]
+             f'        <Time Value="{float(time)!r}"/>']
+    if 'NumberOfElements="0"' not in particle_grid:      # the readers fail on an empty grid here
+        lines.append(inner)
+    if npoints:
+        lines += ['        <Grid Name="surfaces" GridType="Uniform">',
+                  f'          <Topology TopologyType="Triangle" NumberOfElements="{ntris}">',
+                  "            " + _data_item(h5name, f"{base}/triangles", (ntris, 3), np.int64),
+                  "          </Topology>",
+                  '          <Geometry GeometryType="XYZ">',
+                  "            " + _data_item(h5name, f"{base}/points", (npoints, 3), np.float64),
+                  "          </Geometry>",
+                  '          <Attribute Name="id" AttributeType="Scalar" Center="Node">',
+                  "            " + _data_item(h5name, f"{base}/id", (npoints,), np.int64),
+                  "          </Attribute>"]
+        for name, (shape, dtype) in (cell_fields or {}).items():
+            lines += [f'          <Attribute Name={quoteattr("cell_" + name if name == "id" else name)} '
+                      f'AttributeType="{_attribute_type(shape)}" Center="Cell">',
+                      "            " + _data_item(h5name, f"{base}/cell_{name}", shape, dtype),
+                      "          </Attribute>"]
+        lines.append("        </Grid>")
+    lines.append("      </Grid>")
     return "\n".join(lines) + "\n"
 
 
@@ -120,7 +134,7 @@ def xdmf_document(grids, name="particles"):
 
 
 class DumpH5(Dump):
-    """dump ID group-ID h5 N file.h5 [fields name ...] [surface yes|no]
+    """dump ID group-ID h5 N file.h5 [fields name ...] [surface yes|no] [xdmf_paths relative|absolute]
 
     Writes every frame of the dump into ONE HDF5 file (h5py), and an XDMF sidecar ``file.xdmf`` (same
     folder, same name with the extension replaced) that ParaView opens as a time series of point sets
@@ -149,6 +163,20 @@ class DumpH5(Dump):
 
     Keyword ``fields`` limits the per-particle datasets (``position`` is always written); default: all.
 
+    The XDMF names the HDF5 file relative to the XDMF file's own folder (both lie in one folder: the
+    data items read ``file.h5:/frames/...``), so the two files can be moved together; ParaView's "Xdmf
+    Reader" and VTK's vtkXdmfReader open it from any folder, by a relative or absolute name. ParaView's
+    "Xdmf3 Reader" (5.11) given a bare relative name (``pvpython``: ``OpenDataFile('drum.xdmf')``) looks
+    for ``drum.xdmfdrum.h5`` and aborts: it prefixes relative data items with the name it was given when
+    that name has no folder part. Open ``./drum.xdmf`` or an absolute name with it (ParaView's file dialog
+    does), or write ``xdmf_paths absolute`` (the XDMF then names the HDF5 file by its absolute path, and
+    the files can no longer be moved).
+
+    meshio's XDMF time-series reader (``meshio.xdmf.TimeSeriesReader``) cannot read this file: it reads
+    one fixed mesh and per-step attributes only, while particles move and their number changes from frame
+    to frame (each frame is its own grid). Read the frames with h5py (layout below), or the VTU files of
+    ``dump vtk`` with ``meshio.read``.
+
     Shaped particles (``shape`` command): the file also holds the shape table, rewritten when it
     grows::
 
@@ -164,9 +192,12 @@ class DumpH5(Dump):
     A particle's body is: mesh of ``shape`` x (``radius`` / bounding_radius[shape]) rotated by
     ``orientation`` (body -> space) and moved to ``position``. With ``surface yes`` (the default when
     shapes exist) each frame also stores that posed surface, ``surface/points`` (p,3),
-    ``surface/triangles`` (t,3) and ``surface/id`` (p,) (particle id of each vertex), and the XDMF
-    frame becomes a spatial collection of the points and a triangle grid: ParaView shows cubes as
-    cubes (color the surfaces by ``id``).
+    ``surface/triangles`` (t,3) and ``surface/id`` (p,) (particle id of each vertex), and per triangle
+    the values of its particle ``surface/cell_id``, ``cell_type``, ``cell_velocity``, ``cell_omega``,
+    ``cell_shape``; the XDMF frame becomes a spatial collection of the points and a triangle grid with
+    point data ``id`` and cell data ``cell_id type velocity omega shape``: ParaView shows cubes as cubes,
+    coloured by ``velocity`` (Magnitude) or ``omega``. A frame without particles is then an empty
+    collection (every frame reads as a multiblock data set).
 
     The file is created at the first frame (a script that stops before its first run leaves no file;
     an existing file of that name is then replaced). It is opened for each frame and closed (flushed)
@@ -180,10 +211,11 @@ class DumpH5(Dump):
     """
 
     style = "h5"
-    keywords = {"fields": None, "surface": 1}
+    keywords = {"fields": None, "surface": 1, "xdmf_paths": 1}
 
     def __init__(self, sim, did, group, every, path, args):
         self.surfaces = True
+        self.absolute_paths = False
         self._nshapes = 0          # shape table rows written to the file
         super().__init__(sim, did, group, every, path, args)
         if "*" in self.path:
@@ -204,13 +236,18 @@ class DumpH5(Dump):
             if values[0] not in ("yes", "no"):
                 raise DemError(f"dump {self.id}: surface must be yes or no, got '{values[0]}'")
             self.surfaces = values[0] == "yes"
+        elif word == "xdmf_paths":
+            if values[0] not in ("relative", "absolute"):
+                raise DemError(f"dump {self.id}: xdmf_paths must be relative or absolute, got '{values[0]}'")
+            self.absolute_paths = values[0] == "absolute"
         else:
             super().keyword(word, values)
 
     def gathered_fields(self):
         names = super().gathered_fields()
         if self.surfaces and len(self.sim.shapes):
-            names += [n for n in ("id", "shape", "orientation", "radius") if n not in names]
+            names += [n for n in ("id", "shape", "orientation", "radius") + SURFACE_CELL_FIELDS
+                      if n not in names]
         return names
 
     def write_shapes(self, f):
@@ -289,10 +326,12 @@ class DumpH5(Dump):
                 del frames[name]
             f.move(PARTIAL, f"frames/{name}")    # the frame appears whole or not at all
         self._grids.pop(frame.step, None)
-        h5name = os.path.basename(self.path)
+        h5name = self.data_item_path()
         grid = xdmf_grid(h5name, frame.step, frame.time, datasets)
         if surf is not None:
-            grid = xdmf_surface(h5name, frame.step, frame.time, grid, len(surf[0]), len(surf[1]))
+            grid = xdmf_surface(h5name, frame.step, frame.time, grid, len(surf[0]), len(surf[1]), surf[3])
+        elif self.surfaces and len(self.sim.shapes):
+            grid = xdmf_surface(h5name, frame.step, frame.time, grid, 0, 0)
         self._grids[frame.step] = grid
         atomic_write(self.xdmf_path, xdmf_document(self._grids.values(), name=str(self.id)))
 
@@ -317,4 +356,20 @@ class DumpH5(Dump):
             s.create_dataset("points", data=points)
             s.create_dataset("triangles", data=tris)
             s.create_dataset("id", data=np.asarray(ids, dtype=np.int64))
+            tri_owner = owner[tris[:, 0]]
+            cells = {}
+            for name in SURFACE_CELL_FIELDS:
+                if name in frame.arrays:
+                    data = np.ascontiguousarray(frame.arrays[name][tri_owner])
+                    s.create_dataset(f"cell_{name}", data=data)
+                    cells[name] = (data.shape, data.dtype)
+            surf = (points, tris, owner, cells)
         return datasets, surf
+
+    def data_item_path(self):
+        """The HDF5 file as the XDMF names it: relative to the XDMF file's folder (the same folder: its
+        base name), or absolute with ``xdmf_paths absolute``."""
+        if self.absolute_paths:
+            return os.path.abspath(self.path)
+        return os.path.relpath(os.path.abspath(self.path),
+                               os.path.dirname(os.path.abspath(self.xdmf_path))).replace(os.sep, "/")

@@ -62,7 +62,8 @@ class _Arrays:
 class DumpVTK(Dump):
     """dump ID group-ID vtk N file_*.vtu [fields name ...] [format binary|ascii] [pvd file.pvd|none]
 
-    Writes one VTK XML UnstructuredGrid file per frame (ParaView, OVITO, VisIt, meshio read them):
+    Writes one VTK XML UnstructuredGrid file per frame (ParaView, VisIt, meshio read them; OVITO 3.17 does
+    not recognise them as particles: use ``dump custom`` for OVITO):
     ``*`` in the file name is replaced by the step number (``out/grains_*.vtu`` gives
     ``out/grains_1000.vtu``); a name without ``*`` gets ``_<step>`` before its extension. Each particle is
     a point (cell VTK_VERTEX) with point data ``id type velocity omega orientation radius mass shape``
@@ -72,7 +73,7 @@ class DumpVTK(Dump):
 
     Shaped particles (``shape`` command) are written as their true surface instead: the triangles of
     the posed, scaled mesh of their shape (cells VTK_TRIANGLE), every vertex carrying the particle's
-    point data (color by ``id`` or ``velocity``); plain spheres stay points. ParaView and OVITO then show
+    point data (color by ``id`` or ``velocity``); plain spheres stay points. ParaView then shows
     cubes as cubes with no glyph filter (for the spheres of a mixture, glyph the VTK_VERTEX cells).
 
     A ``.pvd`` collection listing every frame with its time is rewritten after each frame; open it in

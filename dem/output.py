@@ -37,6 +37,15 @@ class Output:
         self.names.claim(f"dump {did}", dump.output_files(), f"dump {did} ({style})")
         self.dumps[did] = dump
 
+    def modify_dump(self, args):
+        """dump_modify ID keyword value ..."""
+        if len(args) < 2:
+            raise DemError("dump_modify needs: dump_modify ID keyword value ...")
+        if args[0] not in self.dumps:
+            from .errors import unknown
+            raise unknown("dump ID", args[0], self.dumps)
+        self.dumps[args[0]].modify(list(args[1:]))
+
     def undump(self, did):
         if did not in self.dumps:
             from .errors import unknown

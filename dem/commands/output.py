@@ -95,7 +95,8 @@ class ThermoModify(Command):
 class DumpCommand(Command):
     """dump ID GROUP STYLE N FILE [args]
 
-    Styles: h5 (one HDF5 file + XDMF for ParaView), vtk (VTU frames + PVD). Example:
+    Styles: h5 (one HDF5 file + XDMF for ParaView), vtk (VTU frames + PVD), custom (LAMMPS text
+    snapshots, for OVITO: `dump d2 all custom 1000 snap.*.gz id type x y z radius`). Example:
     `dump d1 all h5 1000 pour.h5`. A file (or `*` pattern) already written by another output (the log,
     another dump, the periodic restarts) is refused: two outputs on one file destroy each other."""
     style = "dump"
@@ -103,6 +104,19 @@ class DumpCommand(Command):
 
     def __call__(self, words):
         self.sim.output.add_dump(words)
+
+
+class DumpModify(Command):
+    """dump_modify ID keyword value ...
+
+    Change a dump after the dump command: `every N` (any style), `sort id|off` (any style); dump custom
+    also takes `sort -id|N|-N`, `format float|int|line FMT`, `pad N`, `time yes|no`, `append yes|no`
+    (see dump custom)."""
+    style = "dump_modify"
+    usage = "ID keyword value ..."
+
+    def __call__(self, words):
+        self.sim.output.modify_dump(list(words))
 
 
 class Undump(Command):
