@@ -15,8 +15,8 @@ from dem._particles cimport ParticleView, Particles
 from dem.contact.record cimport Contact
 from dem.contact._surface cimport (Surface, S_CYLINDER, S_A, S_SIDE, S_POS, S_R, S_CENTRE, S_SPIN,
                                    S_OMEGA, S_NCOL, load_surface, bound_gap, sphere_normal, plane_touch,
-                                   cylinder_touch)
-from dem.shapes._support cimport ShapeRef
+                                   cylinder_touch, candidate_point, surface_depth)
+from dem.shapes._support cimport ShapeRef, BOX, POLYHEDRON, MARGIN
 from dem.shapes._table cimport (ShapeView, TableView, body_ref, pose_body, round_body, ncomponents,
                                 component_row, pose_component)
 from dem_contact.apply cimport Body, apply_wall
@@ -64,13 +64,42 @@ cdef inline void _wall_motion(const Surface* w, const double* q, const double* x
         ww[d] = w.omega * e[d]
 
 
+cdef inline int _vertices_beyond(const ShapeRef* S, const double* R, const double* x, const Surface* W,
+                                 const double* n, double delta, double tol, Contact* out) noexcept nogil:
+    """The vertices of a posed polytope beyond the surface W (depth + tol > 0, tol a round-off margin so that
+    a face level with the wall gives all its corners): one point each, at the vertex moved back to the
+    middle of the overlap along n, all with the deepest overlap delta (Descantes: the points of a pair share
+    its maximum overlap). Returns their number (>= 1: the deepest vertex is one of them)."""
+    cdef double qv[3]
+    cdef double dn[3]
+    cdef double depth
+    cdef int k = 0, m = 0, d
+    for d in range(3):
+        dn[d] = -n[d]
+    while candidate_point(S, R, x, dn, k, qv):
+        k += 1
+        depth = surface_depth(W, qv)
+        if depth + tol <= 0.0:
+            continue
+        out[m].delta = delta
+        out[m].central = False
+        for d in range(3):
+            out[m].n[d] = n[d]
+            out[m].p[d] = qv[d] + (depth - 0.5 * delta) * n[d]
+        m += 1
+    return m
+
+
 def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const double[:, :, ::1] coeff,
-          ShapeView shapes, double[:, ::1] xi, bint use_history, double dt, bint advance, bint centroid,
+          ShapeView shapes, double[:, ::1] xi, bint use_history, double dt, bint advance, int point,
           bint average, double[::1] stats):
     """surfaces: rows of S_NCOL values (SURFACE). coeff[w, type]: the law row of surface w. xi: XI_WIDTH
     history values per surface and piece per particle (piece c of surface w at XI_WIDTH (c nw + w); pieces
-    beyond the array's width keep no spring). average: Model B over the pieces touching one surface.
-    stats: the W_ sums (STAT)."""
+    beyond the array's width keep no spring). point: 0 the deepest point, 1 the centroid of the candidate
+    points beyond the surface, 2 multipoint: a polytope (box, polyhedron) touches at every vertex beyond
+    the surface, each with the deepest overlap and a weight 1/alpha, alpha the particle's points against
+    that surface (Descantes 2022 eq. 3; no tangential spring: the points are not tracked). average: Model B
+    over the pieces touching one surface. stats: the W_ sums (STAT)."""
     cdef Particles particles = view.p          # local copies: no call can change them (kept in registers)
     cdef const Particles* P = &particles
     cdef TableView table = shapes.t
@@ -90,10 +119,18 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
     cdef double weight
     cdef const double* x
     cdef Surface* surf = <Surface*>malloc(max(nw, 1) * sizeof(Surface))
-    cdef int maxp = 1
-    for q in range(T.nrows):
-        if T.comp_count[q] > maxp:
-            maxp = T.comp_count[q]
+    cdef bint centroid = point == 1, multi = point == 2
+    cdef int maxp = 1, nvq, k
+    cdef double depth
+    for q in range(T.nrows):           # room for the points of one particle against one surface
+        nvq = 0
+        for c in range(ncomponents(T, q)):
+            row = component_row(T, q, c)
+            nvq += (8 if T.kind[row] == BOX else T.nv[row]) if multi else 1
+            if nvq < c + 1:
+                nvq = c + 1
+        if nvq > maxp:
+            maxp = nvq
     cdef Contact* pts = <Contact*>malloc(maxp * sizeof(Contact))
     cdef int* ptc = <int*>malloc(maxp * sizeof(int))
     if surf == NULL or pts == NULL or ptc == NULL:
@@ -160,9 +197,16 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
                             if use_history and advance and c < hpieces:
                                 forget(&xi[i, XI_WIDTH * (c * nw + w)])
                             continue
+                        if multi and (S.kind == BOX or S.kind == POLYHEDRON) and S.params[MARGIN] == 0.0:
+                            k = _vertices_beyond(&S, Rc, xc, W, pts[npt].n, pts[npt].delta, 1e-9 * P.radius[i],
+                                                 &pts[npt])
+                            for q in range(npt, npt + k):
+                                ptc[q] = -1          # no spring
+                            npt += k
+                            continue
                         ptc[npt] = c
                         npt += 1
-                weight = 1.0 / npt if average and npt > 1 else 1.0
+                weight = 1.0 / npt if (average or multi) and npt > 1 else 1.0
                 for q in range(npt):
                     con.delta = pts[q].delta
                     con.central = pts[q].central
@@ -170,7 +214,7 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
                     for d in range(3):
                         con.n[d] = pts[q].n[d]
                         con.p[d] = pts[q].p[d]
-                    con.key = ptc[q]
+                    con.key = ptc[q] if ptc[q] >= 0 else 0
                     con.weight = weight
                     ncont += 1.0
                     ov = con.delta / (2.0 * P.radius[i])
@@ -194,7 +238,7 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
                     cf = &coeff[w, P.type[i], 0]
                     energy += apply_wall(cf, &con, &A, &B, P.rmass[i] if average or npt == 1 else P.rmass[i] / npt,
                                         P.radius[i] if sphere else 0.0,
-                                        &xi[i, XI_WIDTH * (ptc[q] * nw + w)] if ptc[q] < hpieces else NULL,
+                                        &xi[i, XI_WIDTH * (ptc[q] * nw + w)] if 0 <= ptc[q] < hpieces else NULL,
                                         dt, advance, out)
                     if W.spin >= 0:   # torque about the turning axis: e . (p x F) + e . rolling torque
                         torque += p[(W.spin + 1) % 3] * out[(W.spin + 2) % 3] - p[(W.spin + 2) % 3] * out[(W.spin + 1) % 3]

@@ -8,14 +8,14 @@ from dem.args import Args
 from dem.errors import did_you_mean
 from dem.fix import Fix, Stage
 
-from .wall_fix import WallFix, cylinder, plane, turning
+from .wall_fix import POINT_MODES, WallFix, cylinder, plane, turning
 
 RPM = 2.0 * math.pi / 60.0
 
 
 class FixWallDrum(WallFix, Fix):
     """fix ID group wall/drum AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate]
-        [point deepest|centroid] [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
+        [point deepest|centroid|multipoint] [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
 
     A rotating cylindrical wall (a drum) with the particles inside. AXIS is x, y or z; the axis passes
     through (C1, C2) in the two other coordinates, in x, y, z order (as `region cylinder`); RADIUS is the
@@ -40,7 +40,8 @@ class FixWallDrum(WallFix, Fix):
     contact point and no rolling resistance, as in `pair_style convex/gjk`. `point centroid` puts the
     contact point at the depth-weighted centroid of the body's vertices beyond the wall instead (as
     `fix wall/plane`): a flat face on the curved drum touches along two edges, and one arbitrary corner
-    would rock the particle.
+    would rock the particle. `point multipoint`: a polytope touches at every vertex beyond the wall, the
+    deepest overlap shared and the force divided by their number, as `fix wall/plane`.
 
     Redefining the fix (same ID, e.g. `rpm 0` to fill, then `rpm 40` to rotate) keeps the drum angle;
     the ramp starts again from the redefinition. Global state kept for restarts: the drum angle and the
@@ -56,7 +57,7 @@ class FixWallDrum(WallFix, Fix):
 
     style = "wall/drum"
     stages = Stage.POST_FORCE | Stage.END_OF_STEP
-    usage = ("AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate] [point deepest|centroid] "
+    usage = ("AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate] [point deepest|centroid|multipoint] "
              "[kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]")
 
     def __init__(self, sim, fid, group, args):
@@ -74,7 +75,7 @@ class FixWallDrum(WallFix, Fix):
         self.ramp = 0.0
         self.ends = None
         self.ends_rotate = False
-        self.centroid = False
+        self.point = 0
         i, law = 4, []
         while i < len(a):
             key = a[i]
@@ -94,9 +95,9 @@ class FixWallDrum(WallFix, Fix):
                 self.ends_rotate = a[i + 3] == "rotate"
                 i += 4
             elif key == "point":
-                if a[i + 1] not in ("deepest", "centroid"):
-                    raise a.error(f"point must be deepest or centroid, got '{a[i + 1]}'")
-                self.centroid = a[i + 1] == "centroid"
+                if a[i + 1] not in POINT_MODES:
+                    raise a.error(f"point must be {', '.join(POINT_MODES)}, got '{a[i + 1]}'")
+                self.point = POINT_MODES.index(a[i + 1])
                 i += 2
             elif key in dem_contact.KEYWORDS:
                 law += a.words[i:i + 2]

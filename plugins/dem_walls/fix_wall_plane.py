@@ -5,12 +5,12 @@ from dem.args import number
 from dem.errors import DemError
 from dem.fix import Fix, Stage
 
-from .wall_fix import S, WallFix, plane
+from .wall_fix import POINT_MODES, S, WallFix, plane
 
 
 class FixWallPlane(WallFix, Fix):
     """fix ID group wall/plane xplane|yplane|zplane LO HI [...] [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
-        [point deepest|centroid]
+        [point deepest|centroid|multipoint]
 
     Fixed planar walls. Each `xplane LO HI` adds a wall at x = LO facing +x and one at x = HI facing -x;
     NULL skips one (`zplane 0 NULL`: a floor only). Particles touching a wall feel the Grains3D law with
@@ -22,7 +22,11 @@ class FixWallPlane(WallFix, Fix):
     (default, Grains3D) puts it at that deepest point; `point centroid` at the depth-weighted centroid of
     the body's vertices (rim points for cylinders and cones) below the wall, with the same overlap: a
     face or edge lying on the wall then pushes at its middle (no spurious torque from one arbitrary
-    corner), a single corner below the wall is the deepest point again.
+    corner), a single corner below the wall is the deepest point again. `point multipoint`: a box or
+    polyhedron touches at every vertex below the wall (a cube lying flat: its 4 corners, an edge: its 2
+    ends), each point with the deepest overlap and the force divided by their number (Descantes 2022
+    eq. 3); no tangential spring at those points (curved bodies keep their one point and spring).
+    Glued composites (pair_style glued/convex) touch with each component, Model A/B as the pair style.
     Coefficients: given here for every type, or, when left out, those of each type with itself from
     pair_coeff. Example: `fix floor all wall/plane zplane 0.0 NULL kn 1000 en 0.5 mu 0.5 ks 285.7`."""
 
@@ -53,12 +57,12 @@ class FixWallPlane(WallFix, Fix):
         if not axes:
             raise DemError(f"fix {fid} wall/plane: no wall given; usage: {usage}")
         rest = list(args[i:])
-        self.centroid = False
+        self.point = 0
         if "point" in rest:
             k = rest.index("point")
-            if k + 1 >= len(rest) or rest[k + 1] not in ("deepest", "centroid"):
-                raise DemError(f"fix {fid} wall/plane: point must be deepest or centroid")
-            self.centroid = rest[k + 1] == "centroid"
+            if k + 1 >= len(rest) or rest[k + 1] not in POINT_MODES:
+                raise DemError(f"fix {fid} wall/plane: point must be {', '.join(POINT_MODES)}")
+            self.point = POINT_MODES.index(rest[k + 1])
             del rest[k:k + 2]
         args = args[:i] + rest
         self.table_rows = np.array([plane(*w) for w in zip(axes, positions, sides)])

@@ -33,10 +33,14 @@ def turning(row, axis, centre, omega):
     return row
 
 
+POINT_MODES = ("deepest", "centroid", "multipoint")   # `point` keyword of the wall fixes (kernel's `point`)
+
+
 class WallFix(WallCoefficients):
     """Mixin of a wall Fix: `surfaces()` returns the current table (one row per surface, the same count as
-    the coefficient table's walls); `self.centroid` chooses the contact point of shaped particles."""
-    centroid = False
+    the coefficient table's walls); `self.point` (an index of POINT_MODES) chooses the contact point(s) of
+    shaped particles."""
+    point = 0
 
     def init_walls(self, nwalls):
         self.init_table(nwalls)
@@ -48,7 +52,7 @@ class WallFix(WallCoefficients):
     def compute(self, advance):
         sim = self.sim
         _walls.walls(ParticleView(sim.atom), int(self.groupbit), self.surfaces(), self.table, self.shape_view,
-                     self.history(), self.use_history, sim.update.dt, advance, self.centroid,
+                     self.history(), self.use_history, sim.update.dt, advance, self.point,
                      bool(getattr(sim.pair, "multipoint_average", True)), self.stats)
         self.ncontacts = int(self.stats[STAT["CONTACTS"]])
         self.max_overlap = float(self.stats[STAT["MAXOV"]])
