@@ -11,9 +11,10 @@ from .read_data import ReadData
 from .region import REGIONS
 from .restart import RESTART_COMMANDS
 from .shape_command import SHAPE_STYLES
+from .write_data import WriteData
 
 
 @hookimpl
 def dem_styles():
-    return (COMMANDS + COMPUTE_COMMANDS + [CreateAtoms, SetCommand, ReadData] + RESTART_COMMANDS + REGIONS
+    return (COMMANDS + COMPUTE_COMMANDS + [CreateAtoms, SetCommand, ReadData, WriteData] + RESTART_COMMANDS + REGIONS
             + INTEGRATORS + BALANCE_STYLES + SHAPE_STYLES + [DumpH5, DumpVTK])
