@@ -6,6 +6,7 @@ from .create_atoms import CreateAtoms, SetCommand
 from .dump_h5 import DumpH5
 from .dump_vtk import DumpVTK
 from .hookspecs import hookimpl
+from .fix_python import PYTHON_FIXES
 from .integrate import INTEGRATORS
 from .read_data import ReadData
 from .region import REGIONS
@@ -17,4 +18,4 @@ from .write_data import WriteData
 @hookimpl
 def dem_styles():
     return (COMMANDS + COMPUTE_COMMANDS + [CreateAtoms, SetCommand, ReadData, WriteData] + RESTART_COMMANDS + REGIONS
-            + INTEGRATORS + BALANCE_STYLES + SHAPE_STYLES + [DumpH5, DumpVTK])
+            + INTEGRATORS + PYTHON_FIXES + BALANCE_STYLES + SHAPE_STYLES + [DumpH5, DumpVTK])

@@ -134,6 +134,8 @@ class Update:
         self.ntimestep += 1
         self.time += self.dt
         self.vsync = -0.5 * self.dt
+        for fix in sim.modify.after_step:
+            fix.after_step(self.ntimestep)
         t4 = clock()
         timers["modify"] += t4 - t3
         sim.output.step(self.ntimestep)
