@@ -299,3 +299,19 @@ def test_timing_table_min_avg_max_over_ranks(tmp_path):
         assert 0 <= varavg <= 100 and 0 <= share <= 100
     assert sum(row[4] for row in table.values()) == pytest.approx(100, abs=0.05)
     assert table["Pair"][2] > table["Pair"][0]      # two ranks, two amounts of work: not one number
+
+
+def test_write_data_on_two_ranks_reads_back_as_on_one(tmp_path):
+    """write_data gathers every rank's particles in id order: the file of a 2-rank run reads back (on one
+    rank) as the file of the serial run, to the round-off of the force sums."""
+    import dem
+    files = {}
+    for n in (1, 2):
+        folder = tmp_path / f"r{n}"
+        folder.mkdir()
+        run_dem(folder, bed("bed.h5", run="run 50\nwrite_data bed.data"), n, f"log.{n}")
+        sim = dem.Simulation(screen=False).command("boundary f f fm").command(f"read_data {folder / 'bed.data'}")
+        files[n] = {k: sim.gather(k) for k in ("tag", "x", "v", "radius")}
+    assert np.array_equal(files[1]["tag"], files[2]["tag"]) and len(files[1]["tag"]) > 1000
+    assert np.array_equal(files[1]["radius"], files[2]["radius"])
+    assert np.abs(files[1]["x"] - files[2]["x"]).max() <= 1e-9 * D
