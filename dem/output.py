@@ -116,7 +116,6 @@ class Output:
     def finish(self, nsteps, loop, total, full=True):
         sim = self.sim
         natoms = sim.atom.natoms
-        up = sim.update
         if nsteps == 0:      # run 0: the state was evaluated and output, nothing to time
             sim.print(f"Setup only (run 0) with {natoms} particles: {total:.4g} s")
             for dump in self.dumps.values():
