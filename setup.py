@@ -38,7 +38,10 @@ setup(
     install_requires=["numpy>=1.24", "h5py", "pluggy>=1.0", "scipy", "matplotlib"],
     extras_require={"mpi": ["mpi4py", "mpich"], "test": ["pytest", "mpi4py", "mpich", "vtk", "ovito", "coal", "setuptools>=64", "wheel"]},
     entry_points={
-        "console_scripts": ["dem = dem.cli:main"],
+        "console_scripts": ["dem = dem.cli:main", "dem-plot = dem.tools.plot_series:main",
+                            "dem-frames = dem.tools.drum_frames:main",
+                            "dem-drum-analysis = dem.tools.drum_analysis:main",
+                            "dem-convert-restart = dem.tools.convert_restart:main"],
         "dem": ["core = dem.builtin", "sphere = dem_sphere", "fixes = dem_fixes", "process = dem_process",
                 "convex = dem_convex", "walls = dem_walls", "glued = dem_glued"],
     },

@@ -7,14 +7,16 @@ from .dump_custom import DumpCustom
 from .dump_h5 import DumpH5
 from .dump_vtk import DumpVTK
 from .hookspecs import hookimpl
+from .fix_python import PYTHON_FIXES
 from .integrate import INTEGRATORS
 from .read_data import ReadData
 from .region import REGIONS
 from .restart import RESTART_COMMANDS
 from .shape_command import SHAPE_STYLES
+from .write_data import WriteData
 
 
 @hookimpl
 def dem_styles():
-    return (COMMANDS + COMPUTE_COMMANDS + [CreateAtoms, SetCommand, ReadData] + RESTART_COMMANDS + REGIONS
-            + INTEGRATORS + BALANCE_STYLES + SHAPE_STYLES + [DumpH5, DumpVTK, DumpCustom])
+    return (COMMANDS + COMPUTE_COMMANDS + [CreateAtoms, SetCommand, ReadData, WriteData] + RESTART_COMMANDS
+            + REGIONS + INTEGRATORS + PYTHON_FIXES + BALANCE_STYLES + SHAPE_STYLES + [DumpH5, DumpVTK, DumpCustom])

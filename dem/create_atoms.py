@@ -82,7 +82,8 @@ class CreateAtoms(Command):
     create_atoms TYPE random N SEED REGION-ID [keywords]
     create_atoms TYPE lattice REGION-ID sc|bcc|fcc SPACING [keywords]
 
-    Keywords: `radius R` | `radius uniform RMIN RMAX` | `radius gaussian MEAN SD` (default 0.5),
+    Keywords: `radius R` | `radius uniform RMIN RMAX` | `radius gaussian MEAN SD` (default 0.5 m: give
+    the size here, particles are placed at it; `set ... diameter` afterwards cannot make them fit),
     `density RHO` (default 1), `v VX VY VZ`, `omega WX WY WZ`, `attempts N` (random: tries per particle,
     default 1000).
     Shaped particles (see the `shape` command): `shape NAME`, `scale S` | `scale uniform SMIN SMAX` |
@@ -127,6 +128,7 @@ class CreateAtoms(Command):
             attempts = a.to_int(kw["attempts"][0], "attempts") if "attempts" in kw else 1000
             if attempts < 1:
                 raise a.error("attempts must be >= 1")
+            self.check_fits(a, kw, region, radius)
             x = self.random_fill(region, radius, rng, attempts)
         elif how == "lattice":
             a.need(4)
@@ -204,6 +206,25 @@ class CreateAtoms(Command):
         _, r = comm.allgather_rows(atom.data["tag"][:n], atom.data["radius"][:n])
         order = np.argsort(tags, kind="stable")
         return x[order], r[order]
+
+    @staticmethod
+    def check_fits(a, kw, region, radius):
+        """A sphere of the largest radius fits inside the region, or an error that gives the radius (the
+        default 0.5 m when none was given: `set ... diameter` afterwards comes too late)."""
+        if not len(radius):
+            return
+        rmax = float(np.max(radius))
+        lo, hi = region.extent(rmax)
+        if np.all(hi > lo):
+            return
+        if "radius" not in kw and "shape" not in kw:
+            raise DemError(f"create_atoms: region {region.id} is too small for particles of the default radius "
+                           f"{rmax:g} m (no 'radius' keyword given)",
+                           hint="give the size on create_atoms, e.g. 'create_atoms 1 random 2000 12345 fill "
+                                "radius 0.001': particles are placed at their size, so 'set type 1 diameter "
+                                "...' afterwards is too late")
+        raise DemError(f"create_atoms: region {region.id} is too small for particles of radius {rmax:g} m",
+                       hint="a smaller radius (or scale), or a larger region")
 
     def random_fill(self, region, radius, rng, attempts):
         """Random sequential addition: each sphere (largest first) is tried at fresh random points until

@@ -8,12 +8,16 @@ class Modify:
         self.sim = sim
         self.fixes = []
         self.by_stage = {s: [] for s in Stage}
+        self.after_step = []
         self.restart_states = {}     # fix id -> state read from a restart, given to the fix of that id
 
     def add_fix(self, args):
         if len(args) < 3:
             raise DemError("fix needs: fix ID group-ID style args ...")
         fid, group, style = args[0], args[1], args[2]
+        if self.sim.update.running:
+            raise DemError(f"fix {fid}: a fix cannot be defined during a run (e.g. from a python/every "
+                           f"callback): define it before the run")
         cls = self.sim.registry.get("fix", style)
         self.sim.groups.bit(group)
         fix = cls(self.sim, fid, group, args[3:])
@@ -33,6 +37,10 @@ class Modify:
             if fix.id == fid:
                 fix.unfix()
                 del self.fixes[i]
+                if self.sim.update.running:     # from a callback: the rest of this run goes without it
+                    self._lists()
+                    up = self.sim.update
+                    up.wall_fixes = [f for f in up.wall_fixes if f is not fix]
                 return
         raise unknown("fix ID", fid, [f.id for f in self.fixes])
 
@@ -43,11 +51,16 @@ class Modify:
         return None
 
     def init(self):
-        for s in Stage:
-            self.by_stage[s] = [f for f in self.fixes if f.stages & s]
+        self._lists()
         for fix in self.fixes:
             fix.init()
+
+    def _lists(self):
+        for s in Stage:
+            self.by_stage[s] = [f for f in self.fixes if f.stages & s]
         self.integrators = self.by_stage[Stage.INTEGRATE]
+        # called after each complete step, before its output (fix python/every)
+        self.after_step = [f for f in self.fixes if hasattr(f, "after_step")]
 
     def setup(self):
         for fix in self.fixes:

@@ -2,6 +2,8 @@
 time per stage."""
 import resource
 
+import numpy as np
+
 from .errors import DemError
 from .output_names import OutputNames
 from .thermo import Thermo
@@ -123,7 +125,6 @@ class Output:
     def finish(self, nsteps, loop, total, full=True):
         sim = self.sim
         natoms = sim.atom.natoms
-        up = sim.update
         if nsteps == 0:      # run 0: the state was evaluated and output, nothing to time
             sim.print(f"Setup only (run 0) with {natoms} particles: {total:.4g} s")
             for dump in self.dumps.values():
@@ -138,15 +139,8 @@ class Output:
         if loop > 0 and nsteps:
             sim.print(f"Performance: {nsteps / loop:.4g} steps/s, {nsteps * natoms / loop:.4g} particle-steps/s")
         sim.print("")
-        sim.print("Section |  time (s)  | %total")
-        sim.print("--------+------------+-------")
-        accounted = 0.0
-        for name in TIMERS:
-            t = sim.comm.max(up.timers[name])
-            accounted += t
-            sim.print(f"{name:<8}| {t:10.4g} | {100 * t / loop if loop else 0:5.1f}")
-        other = max(loop - accounted, 0.0)
-        sim.print(f"{'other':<8}| {other:10.4g} | {100 * other / loop if loop else 0:5.1f}")
+        for line in timing_table(sim, loop):
+            sim.print(line)
         sim.print("")
         nb = sim.neighbor
         sim.print(f"Neighbor list builds = {nb.nbuilds}, pairs listed = {sim.comm.sum(nb.nentries)}, "
@@ -166,3 +160,26 @@ class Output:
             except Exception:
                 pass
         self.dumps.clear()
+
+
+def timing_table(sim, loop):
+    """The time of each section of the loop over the ranks, as LAMMPS prints it: min, average and max over
+    ranks (seconds), %varavg (standard deviation over ranks in percent of the average: load imbalance)
+    and %total (the average's share of the average loop time). `Other` is each rank's loop time not in a
+    section, so the %total column sums to 100. Collective: every rank calls it."""
+    up = sim.update
+    t = np.array([up.timers[name] - up.setup_timers[name] for name in TIMERS] + [0.0])
+    t[-1] = max(loop - t[:-1].sum(), 0.0)
+    lo, avg, hi = sim.comm.min_avg_max(np.concatenate([t, t * t, [loop]]))
+    n = len(t)
+    lo, avg2, hi, avg, loop_avg = lo[:n], avg[n:2 * n], hi[:n], avg[:n], avg[-1]
+    var = np.sqrt(np.maximum(avg2 - avg * avg, 0.0))
+    lines = [f"Section timing over {sim.comm.nprocs} rank(s) (seconds):",
+             "Section   |  min time  |  avg time  |  max time  |%varavg| %total",
+             "----------+------------+------------+------------+-------+-------"]
+    for k, name in enumerate(TIMERS + ("other",)):
+        varavg = 100.0 * var[k] / avg[k] if avg[k] > 0 else 0.0
+        share = 100.0 * avg[k] / loop_avg if loop_avg > 0 else 0.0
+        lines.append(f"{name.capitalize():<10}| {lo[k]:<10.5g} | {avg[k]:<10.5g} | {hi[k]:<10.5g} |"
+                     f"{varavg:6.1f} |{share:6.2f}")
+    return lines

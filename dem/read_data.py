@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 
+from . import shape_command
 from .args import integer, number
 from .command import Command
 from .commands.box import MAX_TYPES
@@ -25,7 +26,13 @@ class ReadData(Command):
     Every value is checked: ids unique positive integers, types integers in 1..ntypes, diameters and
     densities finite and > 0, one Velocities line per listed id at most. An `Atoms # STYLE` comment
     other than sphere, a section other than Atoms, Velocities and Masses (ignored: masses come from
-    diameter and density) or a text that is not UTF-8 is an error."""
+    diameter and density) or a text that is not UTF-8 is an error.
+    Shaped particles (dem's extras, as write_data writes them): an Atoms line ending in
+    `# shape NAME scale S quat W X Y Z` is a particle of shape NAME at scale S (its bounding radius S
+    times the shape's; the diameter column is then not used, the mass is density x volume), with that
+    orientation (`quat` alone orients a sphere). The shapes must be defined (`shape NAME KIND ...`)
+    before read_data; when none is, the `# shape ...` comment lines of the header define them. Other
+    comments are ignored, as LAMMPS does."""
     style = "read_data"
     usage = "file"
 
@@ -49,13 +56,28 @@ class ReadData(Command):
         v, omega = d.velocities(atoms["tags"])
         if "Masses" in d.sections:
             sim.warning(f"read_data {path}: Masses section ignored (masses come from diameter and density)")
+        shapes_before = sim.shapes
+        try:
+            shaped = d.shapes(sim, atoms)
+        except DemError:
+            sim.shapes = shapes_before      # nothing half-made: not even the shape table
+            raise
         # everything checked: now the box and the particles
         sim.domain.set_box(d.lo, d.hi)
         sim.atom.ntypes = d.ntypes
         tags, x = atoms["tags"], atoms["x"]
         mine = sim.comm.owned_mask(x)     # every rank reads the file and keeps its sub-box
-        sim.atom.add(x[mine], atoms["radius"][mine], atoms["rmass"][mine], atoms["types"][mine],
-                     tags=tags[mine], image=atoms["image"][mine], v=v[mine], omega=omega[mine])
+        s = sim.atom.add(x[mine], atoms["radius"][mine], atoms["rmass"][mine], atoms["types"][mine],
+                         tags=tags[mine], image=atoms["image"][mine], v=v[mine], omega=omega[mine])
+        rows = np.arange(s.start, s.stop)
+        for k_all, k in zip(np.flatnonzero(mine), rows):
+            if atoms["quat"][k_all] is not None:
+                q = atoms["quat"][k_all]
+                sim.atom.data["quat"][k] = q / np.linalg.norm(q)
+        for index in sorted(set(shaped[mine]) - {-1}):
+            sel = shaped[mine] == index
+            shape_command.assign(sim, rows[sel], int(index), atoms["scale"][mine][sel],
+                                 density=atoms["density"][mine][sel])
         sim.atom.max_tag = max(sim.atom.max_tag, int(tags.max()) if len(tags) else 0)
         sim.atom.natoms += len(tags)
         sim.neighbor.invalidate()
@@ -69,11 +91,15 @@ class DataFile:
         self.path = path
         self.header = {}
         self.sections = {}      # name -> [(line number, words)]
+        self.comments = {}      # line number -> the comment of a section line (dem's extras)
+        self.shape_commands = []    # `# shape NAME KIND ...` header comments (written by write_data)
         current = None
         for lineno, raw in enumerate(lines[1:], 2):     # the first line is a title
             text, _, comment = raw.partition("#")
             words = text.split()
             if not words:
+                if current is None and comment.split()[:1] == ["shape"]:
+                    self.shape_commands.append((lineno, comment.split()[1:]))
                 continue
             if words[0][0].isalpha():
                 current = " ".join(words)
@@ -91,6 +117,8 @@ class DataFile:
                 self.header_line(lineno, words)
             else:
                 self.sections[current].append((lineno, words))
+                if comment.strip():
+                    self.comments[lineno] = comment.split()
         self.lo = [self.header.get(f"{dim}lo", 0.0) for dim in "xyz"]
         self.hi = [self.header.get(f"{dim}hi", 1.0) for dim in "xyz"]
         for dim, lo, hi in zip("xyz", self.lo, self.hi):
@@ -150,6 +178,7 @@ class DataFile:
         tags, types = np.zeros(n, np.int64), np.zeros(n, np.int32)
         diameter, density = np.zeros(n), np.zeros(n)
         x, image = np.zeros((n, 3)), np.zeros((n, 3), np.int32)
+        shape, scale, quat = [None] * n, np.ones(n), [None] * n
         seen = {}
         for k, (lineno, words) in enumerate(rows):
             if len(words) not in ATOM_COLUMNS:
@@ -174,9 +203,39 @@ class DataFile:
             x[k] = [self.number(lineno, w, "position") for w in words[4:7]]
             if len(words) == 10:
                 image[k] = [self.integer(lineno, w, "image flag") for w in words[7:10]]
+            if lineno in self.comments:
+                shape[k], scale[k], quat[k] = self.extras(lineno, self.comments[lineno])
         radius = 0.5 * diameter
-        return {"tags": tags, "types": types, "radius": radius, "x": x, "image": image,
-                "rmass": density * 4.0 / 3.0 * math.pi * radius ** 3, "lines": [ln for ln, _ in rows]}
+        return {"tags": tags, "types": types, "radius": radius, "x": x, "image": image, "density": density,
+                "rmass": density * 4.0 / 3.0 * math.pi * radius ** 3, "lines": [ln for ln, _ in rows],
+                "shape": shape, "scale": scale, "quat": quat}
+
+    def extras(self, lineno, words):
+        """dem's extras in an Atoms line's comment (write_data): `shape NAME scale S` and `quat W X Y Z`,
+        in any order. Any other comment is left alone (LAMMPS comments)."""
+        if not words or words[0] not in ("shape", "quat"):
+            return None, 1.0, None
+        shape, scale, quat = None, 1.0, None
+        i = 0
+        while i < len(words):
+            key = words[i]
+            if key == "shape" and i + 1 < len(words):
+                shape = words[i + 1]
+                i += 2
+            elif key == "scale" and i + 1 < len(words):
+                scale = self.number(lineno, words[i + 1], "scale")
+                if not scale > 0:
+                    raise self.error(lineno, f"scale must be > 0, got {words[i + 1]}")
+                i += 2
+            elif key == "quat" and i + 5 <= len(words):
+                quat = np.array([self.number(lineno, w, "quat") for w in words[i + 1:i + 5]])
+                if not np.linalg.norm(quat) > 0:
+                    raise self.error(lineno, "quat must not be zero")
+                i += 5
+            else:
+                raise self.error(lineno, f"unreadable dem extras '# {' '.join(words)}' (expected "
+                                         f"'# shape NAME scale S quat W X Y Z')")
+        return shape, scale, quat
 
     def check_inside(self, atoms, boundary):
         """Atom centres lie inside the box along fixed ('f') boundaries (elsewhere the box follows the
@@ -193,6 +252,34 @@ class DataFile:
                     raise self.error(atoms["lines"][k], f"atom {atoms['tags'][k]} lies outside the box "
                                                         f"({axis} = {x[k, d]:g} beyond {bound}, a fixed "
                                                         f"boundary); {len(out)} atom(s) in all")
+
+    def shapes(self, sim, atoms):
+        """Shape indices (-1: sphere) of the Atoms lines with dem's `# shape NAME` extras. With no shape
+        defined yet, the `# shape ...` commands of the header (write_data's) define them first."""
+        names = atoms["shape"]
+        index = np.full(len(names), -1, dtype=np.int64)
+        if not any(n is not None for n in names):
+            return index
+        if len(sim.shapes) == 0 and self.shape_commands:
+            from .shape_command import ShapeCommand
+            cmd = ShapeCommand(sim)
+            for lineno, words in self.shape_commands:
+                try:
+                    cmd(words)
+                except DemError as e:
+                    raise self.error(lineno, f"shape {' '.join(words)}: {e}") from None
+        known = {}
+        for k, name in enumerate(names):
+            if name is None:
+                continue
+            if name not in known:
+                try:
+                    known[name] = shape_command.shape_index(sim, name)
+                except DemError as e:
+                    raise self.error(atoms["lines"][k], f"{e} (define the shapes with `shape NAME KIND ...` "
+                                                        f"before read_data)") from None
+            index[k] = known[name]
+        return index
 
     def velocities(self, tags):
         n = len(tags)

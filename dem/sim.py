@@ -44,6 +44,7 @@ class Sim:
         self.modify = Modify(self)
         self.shapes = SimShapes()      # the shape table, empty until a `shape` command adds a row
         self.computes = {}             # compute ID -> compute, in definition order
+        self.callbacks = {}            # name -> Python function, for fix python/every
         self.update = Update(self)
         self.output = Output(self)
         if log:
@@ -68,11 +69,31 @@ class Sim:
         return self
 
     def run(self, nsteps):
+        if self.update.running:
+            raise DemError("run: a run cannot be started from inside a run (e.g. from a python/every callback)")
         n = float(nsteps)
         if not (math.isfinite(n) and n == int(n)):
             raise DemError(f"run: the number of steps must be a whole number, got {nsteps!r}")
         self.update.run(int(n))
         return self
+
+    def callback(self, name, func):
+        """Register `func(sim)` as NAME for `fix ID group python/every N NAME`."""
+        if not callable(func):
+            raise DemError(f"callback {name}: {func!r} is not callable")
+        self.callbacks[name] = func
+        return self
+
+    def every(self, n, func, fix_id=None):
+        """Call `func(sim)` every n steps of the runs (fix python/every, ID `fix_id`, default
+        `py_` + the function's name); returns the fix ID (`unfix ID` stops it)."""
+        name = getattr(func, "__name__", "callback")
+        if not name.isidentifier():
+            name = "callback"
+        fix_id = fix_id or f"py_{name}"
+        self.callback(fix_id, func)
+        self.command(f"fix {fix_id} all python/every {int(n)} {fix_id}")
+        return fix_id
 
     # ----- output ----------------------------------------------------------------------------------
     def print(self, text, screen=True):

@@ -32,6 +32,7 @@ class Update:
         self.in_run = False                 # inside `run ... every`: its commands may not start a run
         self.running = False
         self.timers = dict.fromkeys(TIMERS, 0.0)
+        self.setup_timers = dict.fromkeys(TIMERS, 0.0)
         self.wall_start = None
         self.max_overlap_fraction = 0.2
         self.vsync = 0.0   # v + vsync * f / m is the full-step velocity of the last force evaluation
@@ -93,6 +94,7 @@ class Update:
             try:
                 self.setup(quiet=quiet_setup)
                 self.ran = True
+                self.setup_timers = dict(self.timers)   # the setup's force pass: not in the loop time
                 self.wall_start = time.perf_counter()
                 for _ in range(nsteps):
                     self.step()
@@ -132,6 +134,8 @@ class Update:
         self.ntimestep += 1
         self.time += self.dt
         self.vsync = -0.5 * self.dt
+        for fix in sim.modify.after_step:
+            fix.after_step(self.ntimestep)
         t4 = clock()
         timers["modify"] += t4 - t3
         sim.output.step(self.ntimestep)

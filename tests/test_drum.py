@@ -281,15 +281,10 @@ def test_errors():
 
 
 def test_pictures_and_series(tmp_path):
-    """dump png writes the cross-section during the run; tools/drum_frames.py draws the same from the HDF5
-    dump; fix print/series writes one line per N steps (plus the first) that tools/plot_series.py plots."""
-    import sys
-    from pathlib import Path
-    tools = Path(__file__).resolve().parents[1] / "tools"
-    sys.path.insert(0, str(tools))
-    import drum_analysis
-    import drum_frames
-    import plot_series
+    """dump png writes the cross-section during the run; dem-frames (dem.tools.drum_frames) draws the same
+    from the HDF5 dump; fix print/series writes one line per N steps (plus the first) that dem-plot
+    (dem.tools.plot_series) plots."""
+    from dem.tools import drum_analysis, drum_frames, plot_series
     sim = dem.Simulation(screen=False)
     sim.commands(f"""
         boundary f p f

@@ -120,3 +120,21 @@ def test_bad_command_line(tmp_path):
                          capture_output=True, text=True, cwd=tmp_path)
     assert out.returncode != 0 and "Traceback" not in out.stderr
     assert "ERROR: cannot open input file 'nothere.in'" in out.stderr
+
+
+@pytest.mark.parametrize("radius, needle", [("", "the default radius 0.5 m (no 'radius' keyword given)"),
+                                            ("radius 0.02", "too small for particles of radius 0.02 m")])
+def test_create_atoms_random_region_too_small_names_the_radius(radius, needle):
+    """The LAMMPS idiom `create_atoms ... random ...` then `set type 1 diameter D` meets the default
+    radius first: the message says which radius did not fit and how to give it."""
+    import dem
+    sim = dem.Simulation(screen=False)
+    with pytest.raises(dem.DemError) as err:
+        sim.commands("region box block 0 0.05 0 0.05 0 0.05\ncreate_box 1 box\n"
+                     "region fill block 0.005 0.045 0.005 0.045 0.005 0.045\n"
+                     f"create_atoms 1 random 2000 12345 fill {radius}\nset type 1 diameter 0.002\n")
+    text = str(err.value)
+    assert "region fill is too small" in text and needle in text and err.value.where == "<string>:4"
+    if not radius:
+        assert "radius 0.001" in text and "set type 1 diameter" in text       # the hint: give it here
+    assert sim.atom.natoms == 0

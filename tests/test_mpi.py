@@ -271,3 +271,47 @@ def test_serial_run_does_not_import_mpi4py(tmp_path):
                          timeout=60)
     assert res.returncode == 0, res.stderr
     assert res.stdout.strip() == "False"
+
+
+def timing_table(log):
+    """{section: (min, avg, max, %varavg, %total)} of the last timing table of a log."""
+    lines = Path(log).read_text().splitlines()
+    start = max(i for i, line in enumerate(lines) if line.startswith("Section   |"))
+    table = {}
+    for line in lines[start + 2:]:
+        if "|" not in line:
+            break
+        cells = [c.strip() for c in line.split("|")]
+        table[cells[0]] = tuple(float(c) for c in cells[1:])
+    return table
+
+
+def test_timing_table_min_avg_max_over_ranks(tmp_path):
+    """LAMMPS's table: min <= avg <= max over the ranks, and %total (avg over the average loop time, with
+    Other the rest of each rank's loop) sums to 100, not beyond."""
+    run_dem(tmp_path, bed("bed.h5", run="run 100"), 2, "log.2")
+    text = (tmp_path / "log.2").read_text()
+    assert "Section timing over 2 rank(s)" in text
+    table = timing_table(tmp_path / "log.2")
+    assert list(table) == ["Pair", "Neigh", "Comm", "Modify", "Integrate", "Output", "Other"]
+    for name, (lo, avg, hi, varavg, share) in table.items():
+        assert 0 <= lo <= avg * (1 + 1e-4) and avg <= hi * (1 + 1e-4), name
+        assert 0 <= varavg <= 100 and 0 <= share <= 100
+    assert sum(row[4] for row in table.values()) == pytest.approx(100, abs=0.05)
+    assert table["Pair"][2] > table["Pair"][0]      # two ranks, two amounts of work: not one number
+
+
+def test_write_data_on_two_ranks_reads_back_as_on_one(tmp_path):
+    """write_data gathers every rank's particles in id order: the file of a 2-rank run reads back (on one
+    rank) as the file of the serial run, to the round-off of the force sums."""
+    import dem
+    files = {}
+    for n in (1, 2):
+        folder = tmp_path / f"r{n}"
+        folder.mkdir()
+        run_dem(folder, bed("bed.h5", run="run 50\nwrite_data bed.data"), n, f"log.{n}")
+        sim = dem.Simulation(screen=False).command("boundary f f fm").command(f"read_data {folder / 'bed.data'}")
+        files[n] = {k: sim.gather(k) for k in ("tag", "x", "v", "radius")}
+    assert np.array_equal(files[1]["tag"], files[2]["tag"]) and len(files[1]["tag"]) > 1000
+    assert np.array_equal(files[1]["radius"], files[2]["radius"])
+    assert np.abs(files[1]["x"] - files[2]["x"]).max() <= 1e-9 * D

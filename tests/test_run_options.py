@@ -64,7 +64,7 @@ def test_pre_no_and_post_no_shorten_the_output(tmp_path):
     sim = make(tmp_path, 'run 30 pre no post no every 10 NULL\n', log="log.test")
     sim.close()
     log = (tmp_path / "log.test").read_text()
-    assert log.count("Loop time") == 3 and log.count("Section |") == 1    # full summary after the last
+    assert log.count("Loop time") == 3 and log.count("Section timing") == 1    # full summary after the last
     header = next(line for line in log.splitlines() if line.split()[:1] == ["step"])
     assert log.count(header) == 1                                          # one thermo header
 

@@ -1,71 +1,9 @@
 #!/usr/bin/env python
-"""PNG frames of a drum from a dem HDF5 dump (`dump ID group h5 N file.h5`): particles seen along the drum
-axis, coloured by translational velocity magnitude from blue (0) to red (vmax), like Part III Fig. 20.
-
-    python tools/drum_frames.py drum.h5 [--axis y] [--centre C1 C2] [--radius 0.05] [--frames all|last|K,..]
-                                [--vmax V] [--up 0 0 1] [--size 700] [--out DIR]
-
-Frames are written as DIR/<name>_<step>.png (DIR defaults to the dump's folder). The HDF5 layout is that
-of dem.dump_h5 (/frames/<step>/position, velocity, radius; attributes step, time). Needs h5py and
-matplotlib. The same pictures can be written during a run with `dump ID group png N file_*.png`.
-"""
-import argparse
-import os
+"""Wrapper of dem.tools.drum_frames (see its docstring), which is installed with dem as the command
+`dem-frames` and also runs as `python -m dem.tools.drum_frames`. It runs the installed dem."""
 import sys
 
-import numpy as np
-
-
-def read_frames(path):
-    """[(step, time, {name: array})] of a dem HDF5 dump, in step order."""
-    import h5py
-    out = []
-    with h5py.File(path, "r", locking=False) as f:
-        if f.attrs.get("format") != "dem-dump-h5":
-            raise SystemExit(f"{path}: not a dem HDF5 dump")
-        for name in sorted(f["frames"]):
-            g = f["frames"][name]
-            arrays = {k: g[k][()] for k in g}
-            out.append((int(g.attrs["step"]), float(g.attrs["time"]), arrays))
-    return out
-
-
-def main(argv=None):
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("dump")
-    p.add_argument("--axis", default="y", choices="xyz")
-    p.add_argument("--centre", nargs=2, type=float, default=[0.0, 0.0],
-                   help="the axis position in the two other coordinates, x y z order")
-    p.add_argument("--radius", type=float, default=0.05, help="drum radius drawn (0: none)")
-    p.add_argument("--frames", default="all", help="all, last, or frame indices K,K,.. (negative from the end)")
-    p.add_argument("--vmax", type=float, default=None, help="velocity of the red end (default: per frame max)")
-    p.add_argument("--up", nargs=3, type=float, default=[0.0, 0.0, 1.0], help="the upward direction")
-    p.add_argument("--size", type=int, default=700, help="picture size in pixels")
-    p.add_argument("--out", default=None, help="folder of the PNG files (default: the dump's)")
-    a = p.parse_args(argv)
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "plugins"))
-    from dem_process.render import render_cross_section
-
-    frames = read_frames(a.dump)
-    if not frames:
-        raise SystemExit(f"{a.dump}: no frame")
-    if a.frames == "last":
-        frames = frames[-1:]
-    elif a.frames != "all":
-        frames = [frames[int(k)] for k in a.frames.split(",")]
-    axis = "xyz".index(a.axis)
-    centre = np.zeros(3)
-    centre[[d for d in range(3) if d != axis]] = a.centre
-    out = a.out or os.path.dirname(os.path.abspath(a.dump))
-    os.makedirs(out, exist_ok=True)
-    stem = os.path.splitext(os.path.basename(a.dump))[0]
-    for step, time, arr in frames:
-        path = os.path.join(out, f"{stem}_{step}.png")
-        render_cross_section(path, arr["position"], arr["velocity"], arr["radius"], axis=axis, centre=centre,
-                             drum_radius=a.radius or None, up=a.up, vmax=a.vmax,
-                             title=f"step {step}   t = {time:.4g} s", size_px=a.size)
-        print(path)
-
+from dem.tools.drum_frames import main
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -101,6 +101,15 @@ class CommMPI(Comm):
         self.world.Allreduce(MPI.IN_PLACE, values, MPI.MAX)
         return values
 
+    def min_avg_max(self, values):
+        """(min, average, max) over ranks of a small float array, elementwise: three Allreduces."""
+        v = np.ascontiguousarray(values, dtype=np.float64)
+        lo, total, hi = np.empty_like(v), np.empty_like(v), np.empty_like(v)
+        self.world.Allreduce(v, lo, MPI.MIN)
+        self.world.Allreduce(v, total, MPI.SUM)
+        self.world.Allreduce(v, hi, MPI.MAX)
+        return lo, total / self.nprocs, hi
+
     def any(self, flag):
         return bool(self._allreduce(int(bool(flag)), MPI.MAX))
 

@@ -17,7 +17,7 @@ class FixPrintSeries(Fix):
     flushed after each line. The group is not used.
 
     Example: `fix series all print/series 500 drum.dat c_vm c_cn f_drum[revs]`; plot with
-    `python tools/plot_series.py drum.dat`."""
+    `dem-plot drum.dat` (installed with dem; or `python -m dem.tools.plot_series`)."""
 
     style = "print/series"
     stages = Stage.END_OF_STEP

@@ -1,6 +1,6 @@
 """Pictures of a drum's cross-section (Part III Fig. 20): particles seen along the drum axis, coloured by their
-translational velocity magnitude (blue: slow, red: fast). Used by `dump png` and by tools/drum_frames.py
-(frames of an HDF5 dump). Needs matplotlib (drawn without pyplot, any backend).
+translational velocity magnitude (blue: slow, red: fast). Used by `dump png` and by dem-frames
+(dem.tools.drum_frames: frames of an HDF5 dump). Needs matplotlib (drawn without pyplot, any backend).
 
 Two pictures: the projection along the axis (every particle; spheres as discs, shaped particles as the
 outline of their projected body, the nearest drawn on top) or a slice (the particles cut by one plane

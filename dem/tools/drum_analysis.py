@@ -1,0 +1,103 @@
+"""Drum analysis plots after Part III sec 4.2.3, from runs of inputs/in.drum at several rotation rates:
+
+* mean translational velocity <|v|> / (Omega R) against t* = t Omega (Fig. 26), from the series files;
+* time-averaged coordination number against the rotation rate (Fig. 25), from the series files (average
+  over the last half of each run);
+* probability density of the time-averaged particle velocity / (Omega R) (Fig. 27), from the HDF5 dumps
+  (per-particle average of |v| over the frames of the last half of the run).
+
+    dem-drum-analysis --rpm 20 40 80 --series d20.dat d40.dat d80.dat [--h5 d20.h5 d40.h5 d80.h5]
+                      [--radius 0.05] [-o drum]
+
+(also `python -m dem.tools.drum_analysis ...`, or `python tools/drum_analysis.py ...` in the source tree.)
+
+writes drum_vmean.png, drum_coordination.png and (with --h5) drum_pdf.png. The series files must hold the
+columns c_vm (compute vmean ... drum ...: already divided by Omega R) and c_cn (compute coord), as
+inputs/in.drum writes them; their first line is taken as t = 0 of the rotation.
+"""
+import argparse
+import math
+import sys
+
+import numpy as np
+
+from .plot_series import read_series
+
+
+def _figure(w=7, h=4.5):
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    fig = Figure(figsize=(w, h))
+    FigureCanvasAgg(fig)
+    return fig, fig.add_subplot(111)
+
+
+def time_averaged_speed(path, radius, omega, last_half=True):
+    """Per-particle |v| averaged over the frames (of the last half) of an HDF5 dump, / (Omega R)."""
+    from .drum_frames import read_frames
+    frames = read_frames(path)
+    if last_half:
+        frames = frames[len(frames) // 2:]
+    acc, count = {}, {}
+    for _, _, arr in frames:
+        speed = np.sqrt((arr["velocity"] ** 2).sum(1))
+        for i, s in zip(arr["id"], speed):
+            acc[i] = acc.get(i, 0.0) + s
+            count[i] = count.get(i, 0) + 1
+    return np.array([acc[i] / count[i] for i in acc]) / (omega * radius)
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--rpm", nargs="+", type=float, required=True)
+    p.add_argument("--series", nargs="+", required=True)
+    p.add_argument("--h5", nargs="*", default=None)
+    p.add_argument("--radius", type=float, default=0.05)
+    p.add_argument("-o", "--output", default="drum")
+    a = p.parse_args(argv)
+    if len(a.series) != len(a.rpm) or (a.h5 and len(a.h5) != len(a.rpm)):
+        raise SystemExit("give one series file (and one h5 file) per rotation rate")
+    outputs = []
+
+    fig, ax = _figure()
+    cn_mean = []
+    for rpm, path in zip(a.rpm, a.series):
+        _, c = read_series(path)
+        w = rpm * 2 * math.pi / 60
+        tstar = (c["time"] - c["time"][0]) * w
+        ax.plot(tstar, c["c_vm"], lw=1, label=f"{rpm:g} rpm")
+        half = len(c["c_cn"]) // 2
+        cn_mean.append(float(np.mean(c["c_cn"][half:])))
+    ax.set_xlabel("t* = t Omega")
+    ax.set_ylabel("<|v|> / (Omega R)")
+    ax.legend()
+    ax.grid(alpha=0.3)
+    outputs.append(f"{a.output}_vmean.png")
+    fig.savefig(outputs[-1], dpi=100)
+
+    fig, ax = _figure()
+    ax.plot(a.rpm, cn_mean, "o-")
+    ax.set_xlabel("rotation rate (rpm)")
+    ax.set_ylabel("time-averaged coordination number")
+    ax.grid(alpha=0.3)
+    outputs.append(f"{a.output}_coordination.png")
+    fig.savefig(outputs[-1], dpi=100)
+
+    if a.h5:
+        fig, ax = _figure()
+        for rpm, path in zip(a.rpm, a.h5):
+            s = time_averaged_speed(path, a.radius, rpm * 2 * math.pi / 60)
+            hist, edges = np.histogram(s, bins=40, density=True)
+            ax.plot(0.5 * (edges[1:] + edges[:-1]), hist, label=f"{rpm:g} rpm")
+        ax.set_xlabel("time-averaged |v| / (Omega R)")
+        ax.set_ylabel("PDF")
+        ax.legend()
+        ax.grid(alpha=0.3)
+        outputs.append(f"{a.output}_pdf.png")
+        fig.savefig(outputs[-1], dpi=100)
+    for o in outputs:
+        print(o)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

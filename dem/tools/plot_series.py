@@ -1,0 +1,70 @@
+"""Plot the time series written by `fix print/series` (or any file of columns with a `# step time name
+...` header) to a PNG: one panel per column, against time, step or t* = (t - t0) Omega.
+
+    dem-plot drum.dat [--x time|step|tstar] [--rpm 40] [--columns c_vm c_cn ...] [-o drum_series.png]
+
+(also `python -m dem.tools.plot_series ...`, or `python tools/plot_series.py ...` in the source tree.)
+"""
+import argparse
+import math
+import os
+import sys
+
+
+def read_series(path):
+    """(column names, {name: numpy array}) of a print/series file."""
+    import numpy as np
+    names = None
+    rows = []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#"):
+                if names is None:
+                    names = line[1:].split()
+                continue
+            if line.strip():
+                rows.append([float(w) for w in line.split()])
+    if names is None or not rows:
+        raise SystemExit(f"{path}: no header or no data")
+    data = np.array(rows)
+    return names, {n: data[:, k] for k, n in enumerate(names)}
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("series")
+    p.add_argument("--x", default="time", choices=["time", "step", "tstar"])
+    p.add_argument("--rpm", type=float, default=None, help="rotation rate for t* = (t - t0) Omega")
+    p.add_argument("--columns", nargs="*", default=None)
+    p.add_argument("-o", "--output", default=None)
+    a = p.parse_args(argv)
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    names, cols = read_series(a.series)
+    ys = a.columns or [n for n in names if n not in ("step", "time")]
+    if a.x == "tstar":
+        if not a.rpm:
+            raise SystemExit("--x tstar needs --rpm")
+        x = (cols["time"] - cols["time"][0]) * a.rpm * 2 * math.pi / 60
+        xlabel = "t* = t Omega"
+    else:
+        x = cols[a.x]
+        xlabel = "time (s)" if a.x == "time" else "step"
+    fig = Figure(figsize=(8, 1.9 * len(ys) + 0.6))
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(len(ys), 1, sharex=True, squeeze=False)[:, 0]
+    for ax, name in zip(axes, ys):
+        ax.plot(x, cols[name], lw=1)
+        ax.set_ylabel(name)
+        ax.grid(alpha=0.3)
+    axes[-1].set_xlabel(xlabel)
+    fig.suptitle(os.path.basename(a.series))
+    fig.tight_layout()
+    out = a.output or os.path.splitext(a.series)[0] + "_series.png"
+    fig.savefig(out, dpi=100)
+    print(out)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,91 @@
+"""The Python API of docs/python.md: its example runs as printed, and `sim.every` / `fix python/every` call
+Python every N steps after the step, with the state of that step's output."""
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import dem
+
+DOC = Path(__file__).resolve().parents[1] / "docs" / "python.md"
+BALL = """
+units si
+region box block 0 0.01 0 0.01 0 0.02
+create_box 1 box
+create_atoms 1 single 0.005 0.005 0.01 radius 0.001 density 2500
+fix integrate all nve/sphere
+fix gravity all gravity 9.81 vector 0 0 -1
+timestep 1e-4
+thermo 0
+"""
+
+
+def test_the_documented_example_runs(tmp_path, monkeypatch, capsys):
+    blocks = re.findall(r"```python\n(.*?)```", DOC.read_text(), re.S)
+    example = next(b for b in blocks if "sim.every" in b)
+    monkeypatch.chdir(tmp_path)
+    namespace = {}
+    exec(compile(example, str(DOC), "exec"), namespace)
+    history, sim = namespace["history"], namespace["sim"]
+    assert [h[0] for h in history] == list(range(250, 3001, 250))
+    counts = [h[1] for h in history]
+    stop = next(k for k, n in enumerate(counts) if n >= 50)
+    assert counts[0] > 0 and counts == sorted(counts) and stop < len(counts) - 2
+    assert counts[stop:] == [counts[stop]] * (len(counts) - stop)        # no insertion after the unfix
+    assert sim.modify.find("pour") is None and len(namespace["x"]) == counts[stop] < 400
+    assert all(h[2] > 0 for h in history) and f"{counts[stop]} particles" in capsys.readouterr().out
+
+
+def test_every_sees_the_state_of_the_step_just_done():
+    seen = []
+    sim = dem.Simulation(screen=False).commands(BALL)
+
+    def probe(s):
+        z = s.gather("x")[0, 2]
+        seen.append((s.update.ntimestep, s.update.time, z, s.thermo_keyword("step")))
+
+    fid = sim.every(10, probe)
+    assert fid == "py_probe"
+    sim.run(35)
+    assert [k[0] for k in seen] == [10, 20, 30] and [k[3] for k in seen] == [10, 20, 30]
+    assert seen[-1][1] == pytest.approx(30 * 1e-4)
+    sim.run(15)                                           # counts steps, not calls: 40 and 50
+    assert [k[0] for k in seen][3:] == [40, 50]
+    assert seen[-1][2] == sim.gather("x")[0, 2]          # the state at the end of step 50
+    sim.command(f"unfix {fid}")
+    sim.run(20)
+    assert len(seen) == 5
+
+
+def test_script_form_and_errors():
+    calls = []
+    sim = dem.Simulation(screen=False).commands(BALL)
+    sim.callback("count", lambda s: calls.append(s.update.ntimestep))
+    sim.commands("fix c all python/every 5 count\nrun 12")
+    assert calls == [5, 10]
+    with pytest.raises(dem.DemError, match="no Python function registered as 'cuont'.*count"):
+        sim.command("fix d all python/every 5 cuont")
+    with pytest.raises(dem.DemError, match="N must be an integer >= 1"):
+        sim.command("fix d all python/every 0 count")
+
+
+@pytest.mark.parametrize("action, message", [
+    (lambda s: s.run(5), "a run cannot be started from inside a run"),
+    (lambda s: s.command("run 5"), "a run cannot be started from inside a run"),
+    (lambda s: s.command("fix g2 all gravity 1 vector 0 0 -1"), "a fix cannot be defined during a run"),
+])
+def test_callback_may_not_run_or_define_fixes(action, message):
+    sim = dem.Simulation(screen=False).commands(BALL)
+    sim.every(5, action)
+    with pytest.raises(dem.DemError, match=message):
+        sim.run(10)
+
+
+def test_unfix_from_a_callback_takes_effect_at_once():
+    sim = dem.Simulation(screen=False).commands(BALL)
+    sim.every(10, lambda s: s.command("unfix gravity") if s.modify.find("gravity") else None)
+    sim.run(10)
+    v = sim.gather("v").copy()
+    sim.run(20)
+    assert np.array_equal(sim.gather("v"), v)            # no gravity after step 10, nothing else acts
