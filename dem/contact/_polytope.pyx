@@ -420,19 +420,21 @@ cdef int _clip_poly(const double* S, int ns, const double* C, int nc, double* ou
         for i in range(n):
             p = src + 2 * i
             q = src + 2 * ((i + 1) % n)
-            # signed distances to the clip line, > 0 inside (left of c0 -> c1), with a tolerance
-            dp = (ex * (p[1] - c0[1]) - ey * (p[0] - c0[0])) / ln + tol
-            dq = (ex * (q[1] - c0[1]) - ey * (q[0] - c0[0])) / ln + tol
-            if dp >= 0.0:
+            # signed distances to the clip line, > 0 inside (left of c0 -> c1); inside within tol, the
+            # crossing on the line itself
+            dp = (ex * (p[1] - c0[1]) - ey * (p[0] - c0[0])) / ln
+            dq = (ex * (q[1] - c0[1]) - ey * (q[0] - c0[0])) / ln
+            if dp >= -tol:
                 dst[2 * m] = p[0]
                 dst[2 * m + 1] = p[1]
                 m += 1
-                if dq < 0.0:
-                    s = dp / (dp - dq)
-                    dst[2 * m] = p[0] + s * (q[0] - p[0])
-                    dst[2 * m + 1] = p[1] + s * (q[1] - p[1])
-                    m += 1
-            elif dq >= 0.0:
+                if dq < -tol:
+                    s = dp / (dp - dq) if dp > 0.0 else 0.0
+                    if s > 0.0:
+                        dst[2 * m] = p[0] + s * (q[0] - p[0])
+                        dst[2 * m + 1] = p[1] + s * (q[1] - p[1])
+                        m += 1
+            elif dq > 0.0:             # (q within tol of the line: q itself is the crossing, kept next)
                 s = dp / (dp - dq)
                 dst[2 * m] = p[0] + s * (q[0] - p[0])
                 dst[2 * m + 1] = p[1] + s * (q[1] - p[1])
@@ -462,16 +464,16 @@ cdef int _clip_segment(const double* S, const double* C, int nc, double* out, do
         ln = sqrt(ex * ex + ey * ey)
         if ln == 0.0:
             continue
-        dp = (ex * (S[1] - c0[1]) - ey * (S[0] - c0[0])) / ln + tol
-        dq = (ex * (S[3] - c0[1]) - ey * (S[2] - c0[0])) / ln + tol
-        if dp < 0.0 and dq < 0.0:
+        dp = (ex * (S[1] - c0[1]) - ey * (S[0] - c0[0])) / ln
+        dq = (ex * (S[3] - c0[1]) - ey * (S[2] - c0[0])) / ln
+        if dp < -tol and dq < -tol:
             return 0
-        if dp < 0.0:
-            s = dp / (dp - dq)
+        if dp < -tol:
+            s = dp / (dp - dq) if dq > 0.0 else 1.0
             if s > t0:
                 t0 = s
-        elif dq < 0.0:
-            s = dp / (dp - dq)
+        elif dq < -tol:
+            s = dp / (dp - dq) if dp > 0.0 else 0.0
             if s < t1:
                 t1 = s
     if t0 > t1:
