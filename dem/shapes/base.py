@@ -104,6 +104,7 @@ class Shape:
     inradius = 0.0            # min distance from the centre of mass to the surface
     centroid = np.zeros(3)    # centre of mass in the frame the shape was given in
     rotation = np.eye(3)      # body axes in that frame (columns)
+    topology = None           # polytopes (box, polyhedron): faces, edges, adjacency (dem/shapes/topology.py)
 
     def _init_crust(self, crust):
         limit = self.max_crust
@@ -146,6 +147,32 @@ class Shape:
     def principal_axes(self):
         """Principal axes (columns) in the frame the shape was given in."""
         return self.rotation
+
+    # polytope topology (None on curved shapes); a polyhedron's ``faces`` stay its hull triangles
+    @property
+    def face_polygons(self):
+        """Face polygons (vertex ids into ``topology.vertices``, counter-clockwise from outside)."""
+        return None if self.topology is None else self.topology.faces
+
+    @property
+    def face_normals(self):
+        """Unit outward face normals (nf, 3), body frame."""
+        return None if self.topology is None else self.topology.face_normals
+
+    @property
+    def face_offsets(self):
+        """Face plane offsets d (nf,): the body is n.x <= d."""
+        return None if self.topology is None else self.topology.face_offsets
+
+    @property
+    def edges(self):
+        """Edges (ne, 2) as vertex-id pairs into ``topology.vertices``."""
+        return None if self.topology is None else self.topology.edges
+
+    @property
+    def edge_faces(self):
+        """The two faces (ne, 2) adjacent to each edge."""
+        return None if self.topology is None else self.topology.edge_faces
 
     def mass(self, density=1.0):
         return density * self.volume

@@ -10,6 +10,7 @@ the pinacoid) keeps them, and degenerate moments (cube, tetrahedron) keep the in
 import numpy as np
 
 from .base import POLYHEDRON, Shape, packed_params
+from .topology import from_triangles
 
 _DEGENERATE = 1e-9   # relative gap below which two principal moments are treated as equal
 
@@ -105,7 +106,8 @@ class Polyhedron(Shape):
         self.centroid, self.rotation = com, R
         Vb = (V - com) @ R
         self.vertices = np.ascontiguousarray(Vb)
-        self.faces = F
+        self.faces = F                                  # hull triangles (mesh, mass properties)
+        self.topology = from_triangles(Vb, F)           # merged planar faces, edges (topology.py)
         self.volume, c2, M2 = mesh_mass_properties(Vb, F)
         I = inertia_from_second_moment(M2 - self.volume * np.outer(c2, c2))
         self.principal_moments = np.diag(I).copy()

@@ -10,6 +10,7 @@ import numpy as np
 
 from .base import (BOX, CONE, CYLINDER, ELLIPSOID, SPHERE, SUPERQUADRIC, Shape, orient_outward, packed_params,
                    uv_mesh)
+from .topology import box_topology
 
 
 def _positive(name, **kw):
@@ -58,6 +59,7 @@ class Box(Shape):
         self.principal_moments = self.volume / 12.0 * np.array([s2[1] + s2[2], s2[0] + s2[2], s2[0] + s2[1]])
         self.bounding_radius = float(np.linalg.norm(h))
         self.inradius = float(h.min())
+        self.topology = box_topology(h)
         self._init_crust(crust)
 
     def _make_core(self):

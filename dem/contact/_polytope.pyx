@@ -1,0 +1,806 @@
+# cython: language_level=3, boundscheck=False, wraparound=False, cdivision=True, initializedcheck=False
+"""Exact penetration of two sharp convex polytopes (separating axes on the Gauss map) and their multipoint
+contact (features projected on the contact plane and clipped), nogil.
+
+Penetration (sat_penetration)
+-----------------------------
+For two overlapping convex bodies the penetration depth is  delta = min over unit u of h_{A-B}(u), with
+h_{A-B}(u) = h_A(u) + h_B(-u) the support function of the Minkowski difference: the distance from the
+origin to the boundary of A - B, reached at the facet of A - B closest to the origin. That facet is the
+point P that Descantes' GJK-TD relocates onto the hull of A - B (Descantes 2022 sec. 2.3.1), so both give
+the same depth and normal; GJK-TD gets there by iterating simplices, this kernel by enumerating the
+candidate facets: for polytopes every facet of A - B has as normal a face normal of A, minus a face
+normal of B, or the cross product of an edge of A and an edge of B. The edge pairs that do build a facet
+are those whose arcs on the Gauss map cross (Gregorius, GDC 2013: arc (a, b) of A's edge, with a, b its
+two face normals, against (-c, -d) of B's); for them the facet normal u = eA x eB is oriented into arc
+(a, b) and h_{A-B}(u) = u . (vA - vB) from one vertex of each edge. Every candidate value is >= delta
+(h_{A-B}(u) >= delta for every unit u when the origin is inside), and the true facet is a candidate, so
+the minimum is delta exactly (to round-off); unlike EPA there is no iteration and no tolerance.
+
+Degenerate cases (dense packings): parallel edges (|eA x eB| <= SAT_PARALLEL |eA| |eB|) are skipped: their
+facet, when it exists, has the normal of a face of A or B, which is a candidate anyway. For nearly parallel
+edges (|sin| < SAT_SMALLSIN) the computed u carries a relative error eps / |sin|; the value is then taken
+from the full supports h_A(u) + h_B(-u), an upper bound that stays >= delta. Ties: a candidate replaces the
+best one of its family only if lower by more than SAT_TIE * L (L = the two bounding radii, scaled): so the
+lowest index wins within that tolerance; then the faces of A win over those of B, and faces over edge
+pairs, within the same tolerance. The depth returned is the chosen axis' value, within SAT_TIE * L of the
+minimum. Everything is computed in A's rotated frame centred on A (relative position first), so large
+coordinates cost no digits. Cost: O(nf_A nv_B + nf_B nv_A + ne_A ne_B).
+
+Contact points (contact_points)
+-------------------------------
+With u = -n (from A towards B) and the depth, the contacting feature of A is its vertices whose support
+u . v is within ftol of h_A(u), that of B its vertices within ftol of h_B(-u) along -u: a vertex (1), an
+edge (2), a face (>= 3). Both are projected on the contact plane (normal n, midway between the two
+extreme planes u.x = h_A(u) and u.x = -h_B(-u), i.e. through the midpoint of Descantes' P_A and P_B),
+reduced to their 2D convex hull (monotone chain: vertices sorted by their plane coordinates, collinear and
+repeated points dropped), and clipped: polygon by polygon (Sutherland-Hodgman), segment by polygon
+(Cyrus-Beck), segment by segment (crossing point, or the common interval when parallel); a single vertex
+gives itself (both single: their midpoint). The type is the dimension of the result: one point
+(vertex/face, or edge/edge when two edges cross), two (edge/face), three or more (face/face); at most
+POLY_MAXP points (a larger overlap polygon keeps POLY_MAXP of its corners, evenly spaced). The order is
+canonical: the point with the lowest plane coordinates first, then counter-clockwise about u, so the same
+input gives the same bits. All points share the maximum overlap (Descantes' law, eq. 3).
+"""
+import numpy as np
+from libc.math cimport sqrt, fabs, INFINITY
+
+from dem.shapes._support cimport quat_to_rot
+
+cdef double SAT_TIE = 1e-12        # relative (to the bounding radii) tolerance of axis ties
+cdef double SAT_PARALLEL = 1e-12   # |sin| of two edges below which they are parallel (skipped)
+cdef double SAT_SMALLSIN = 1e-4    # below this |sin| an edge axis is evaluated from the full supports
+cdef double HULL_TOL = 1e-12       # relative (to L) distance below which plane points coincide / are collinear
+
+COLUMNS = ("poly", "voff", "nv", "foff", "nf", "eoff", "ne", "fvoff", "radius", "verts", "face_normal",
+           "face_offset", "face_first", "face_count", "face_verts", "edge_verts", "edge_faces")
+MAXP = POLY_MAXP
+
+
+cdef class TopologyView:
+    """The arrays of dem.shapes.topology.pack_topology behind one TopoTable struct."""
+
+    def __cinit__(self, dict arrays):
+        a = {k: np.ascontiguousarray(arrays[k]) for k in COLUMNS}
+        a["voff"], a["foff"], a["eoff"], a["fvoff"] = (a[k].astype(np.int64) for k in ("voff", "foff", "eoff", "fvoff"))
+        for k in ("poly", "nv", "nf", "ne", "face_first", "face_count", "face_verts", "edge_verts", "edge_faces"):
+            a[k] = np.ascontiguousarray(a[k], np.int32).reshape(-1)
+        for k in ("radius", "verts", "face_normal", "face_offset"):
+            a[k] = np.ascontiguousarray(a[k], float).reshape(-1)
+        cdef const int[::1] poly = a["poly"], nv = a["nv"], nf = a["nf"], ne = a["ne"]
+        cdef const int[::1] ff = a["face_first"], fc = a["face_count"], fv = a["face_verts"]
+        cdef const int[::1] ev = a["edge_verts"], ef = a["edge_faces"]
+        cdef const i64[::1] voff = a["voff"], foff = a["foff"], eoff = a["eoff"], fvoff = a["fvoff"]
+        cdef const double[::1] radius = a["radius"], verts = a["verts"], fn = a["face_normal"]
+        cdef const double[::1] fo = a["face_offset"]
+        self.arrays = a
+        self.t.nrows = <int>poly.shape[0]
+        self.t.poly = &poly[0]
+        self.t.voff = &voff[0]
+        self.t.nv = &nv[0]
+        self.t.foff = &foff[0]
+        self.t.nf = &nf[0]
+        self.t.eoff = &eoff[0]
+        self.t.ne = &ne[0]
+        self.t.fvoff = &fvoff[0]
+        self.t.radius = &radius[0]
+        self.t.verts = &verts[0]
+        self.t.face_normal = &fn[0]
+        self.t.face_offset = &fo[0]
+        self.t.face_first = &ff[0]
+        self.t.face_count = &fc[0]
+        self.t.face_verts = &fv[0]
+        self.t.edge_verts = &ev[0]
+        self.t.edge_faces = &ef[0]
+
+    @property
+    def nrows(self):
+        return self.t.nrows
+
+
+# ---------------------------------------------------------------- small helpers
+cdef inline double _dot(const double* a, const double* b) noexcept nogil:
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+cdef inline void _cross(const double* a, const double* b, double* o) noexcept nogil:
+    o[0] = a[1] * b[2] - a[2] * b[1]
+    o[1] = a[2] * b[0] - a[0] * b[2]
+    o[2] = a[0] * b[1] - a[1] * b[0]
+
+
+cdef inline void _mul(const double* M, const double* v, double* o) noexcept nogil:
+    """o = M v (row-major 3x3)."""
+    o[0] = M[0] * v[0] + M[1] * v[1] + M[2] * v[2]
+    o[1] = M[3] * v[0] + M[4] * v[1] + M[5] * v[2]
+    o[2] = M[6] * v[0] + M[7] * v[1] + M[8] * v[2]
+
+
+cdef inline void _tmul(const double* M, const double* v, double* o) noexcept nogil:
+    """o = M^T v."""
+    o[0] = M[0] * v[0] + M[3] * v[1] + M[6] * v[2]
+    o[1] = M[1] * v[0] + M[4] * v[1] + M[7] * v[2]
+    o[2] = M[2] * v[0] + M[5] * v[1] + M[8] * v[2]
+
+
+cdef struct Frame:         # B seen in A's rotated frame centred on A: point of B = t + sb M v
+    double M[9]            # Ra^T Rb
+    double t[3]            # Ra^T (xb - xa)
+    double sa
+    double sb
+    double L               # sa radius_A + sb radius_B
+
+
+cdef inline void _frame(const Polytope* A, const double* Ra, double sa, const double* xa,
+                        const Polytope* B, const double* Rb, double sb, const double* xb, Frame* F) noexcept nogil:
+    cdef int i, j
+    cdef double d[3]
+    for i in range(3):
+        for j in range(3):
+            F.M[3 * i + j] = Ra[i] * Rb[j] + Ra[3 + i] * Rb[3 + j] + Ra[6 + i] * Rb[6 + j]
+        d[i] = xb[i] - xa[i]
+    _tmul(Ra, d, F.t)
+    F.sa = sa
+    F.sb = sb
+    F.L = sa * A.radius + sb * B.radius
+
+
+cdef inline double _hA(const Polytope* A, double sa, const double* w) noexcept nogil:
+    """Support value of A (A's frame) along w."""
+    cdef double best = -INFINITY, s
+    cdef const double* v
+    cdef int k
+    for k in range(A.nv):
+        v = A.verts + 3 * k
+        s = w[0] * v[0] + w[1] * v[1] + w[2] * v[2]
+        if s > best:
+            best = s
+    return sa * best
+
+
+cdef inline double _hB(const Polytope* B, const Frame* F, const double* w) noexcept nogil:
+    """Support value of B (in A's frame) along w: w.t + sb max (M^T w).v."""
+    cdef double wb[3]
+    cdef double best = -INFINITY, s
+    cdef const double* v
+    cdef int k
+    _tmul(F.M, w, wb)
+    for k in range(B.nv):
+        v = B.verts + 3 * k
+        s = wb[0] * v[0] + wb[1] * v[1] + wb[2] * v[2]
+        if s > best:
+            best = s
+    return _dot(w, F.t) + F.sb * best
+
+
+cdef inline void _b_point(const Polytope* B, const Frame* F, int k, double* o) noexcept nogil:
+    """Vertex k of B in A's frame."""
+    _mul(F.M, B.verts + 3 * k, o)
+    o[0] = F.t[0] + F.sb * o[0]
+    o[1] = F.t[1] + F.sb * o[1]
+    o[2] = F.t[2] + F.sb * o[2]
+
+
+# ---------------------------------------------------------------- penetration
+cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double* u_out, SatResult* out) noexcept nogil:
+    """The separating-axis minimum in A's frame: out (depth, axis, fa, fb) and u_out (from A towards B).
+    Returns 1 when depth > 0 (overlap)."""
+    cdef double tie = SAT_TIE * F.L
+    cdef double bestA = INFINITY, bestB = INFINITY, bestE = INFINITY, d, l2, ea2, eb2
+    cdef int fa = -1, fb = -1, ea = -1, eb = -1, f, g, i, j
+    cdef double u[3]
+    cdef double m[3]
+    cdef double uA[3]
+    cdef double uB[3]
+    cdef double uE[3]
+    cdef double c[3]
+    cdef double dd[3]
+    cdef double DxC[3]
+    cdef double BxA[3]
+    cdef double qb0[3]
+    cdef double qb1[3]
+    cdef double eB[3]
+    cdef double eA[3]
+    cdef double w[3]
+    cdef const double* a
+    cdef const double* b
+    cdef const double* va0
+    cdef const double* va1
+    cdef double CBA, DBA, ADC, BDC, s2
+    # faces of A: u = n_f, h_A(u) = sa d_f
+    for f in range(A.nf):
+        a = A.fnormal + 3 * f
+        w[0] = -a[0]
+        w[1] = -a[1]
+        w[2] = -a[2]
+        d = F.sa * A.foffset[f] + _hB(B, F, w)
+        if d < bestA - tie:
+            bestA = d
+            fa = f
+            uA[0] = a[0]
+            uA[1] = a[1]
+            uA[2] = a[2]
+    # faces of B: m = M n_g (outward of B, in A's frame), u = -m, h_B(-u) = m.t + sb d_g
+    for g in range(B.nf):
+        _mul(F.M, B.fnormal + 3 * g, m)
+        w[0] = -m[0]
+        w[1] = -m[1]
+        w[2] = -m[2]
+        d = _hA(A, F.sa, w) + _dot(m, F.t) + F.sb * B.foffset[g]
+        if d < bestB - tie:
+            bestB = d
+            fb = g
+            uB[0] = w[0]
+            uB[1] = w[1]
+            uB[2] = w[2]
+    # edge pairs whose Gauss-map arcs cross: (a, b) of A against (c, d) = (-M n_f0, -M n_f1) of B
+    for j in range(B.ne):
+        _mul(F.M, B.fnormal + 3 * B.efaces[2 * j], c)
+        _mul(F.M, B.fnormal + 3 * B.efaces[2 * j + 1], dd)
+        for i in range(3):
+            c[i] = -c[i]
+            dd[i] = -dd[i]
+        _cross(dd, c, DxC)
+        _b_point(B, F, B.edges[2 * j], qb0)
+        _b_point(B, F, B.edges[2 * j + 1], qb1)
+        eB[0] = qb1[0] - qb0[0]
+        eB[1] = qb1[1] - qb0[1]
+        eB[2] = qb1[2] - qb0[2]
+        eb2 = _dot(eB, eB)
+        for i in range(A.ne):
+            a = A.fnormal + 3 * A.efaces[2 * i]
+            b = A.fnormal + 3 * A.efaces[2 * i + 1]
+            ADC = _dot(a, DxC)
+            BDC = _dot(b, DxC)
+            if not ADC * BDC < 0.0:
+                continue
+            _cross(b, a, BxA)
+            CBA = _dot(c, BxA)
+            DBA = _dot(dd, BxA)
+            if not (CBA * DBA < 0.0 and CBA * BDC > 0.0):
+                continue
+            va0 = A.verts + 3 * A.edges[2 * i]
+            va1 = A.verts + 3 * A.edges[2 * i + 1]
+            eA[0] = F.sa * (va1[0] - va0[0])
+            eA[1] = F.sa * (va1[1] - va0[1])
+            eA[2] = F.sa * (va1[2] - va0[2])
+            ea2 = _dot(eA, eA)
+            _cross(eA, eB, u)
+            l2 = _dot(u, u)
+            s2 = l2 / (ea2 * eb2)
+            if s2 <= SAT_PARALLEL * SAT_PARALLEL:
+                continue
+            l2 = 1.0 / sqrt(l2)
+            u[0] *= l2
+            u[1] *= l2
+            u[2] *= l2
+            if u[0] * (a[0] + b[0]) + u[1] * (a[1] + b[1]) + u[2] * (a[2] + b[2]) < 0.0:
+                u[0] = -u[0]
+                u[1] = -u[1]
+                u[2] = -u[2]
+            if s2 < SAT_SMALLSIN * SAT_SMALLSIN:
+                w[0] = -u[0]
+                w[1] = -u[1]
+                w[2] = -u[2]
+                d = _hA(A, F.sa, u) + _hB(B, F, w)
+            else:
+                d = (u[0] * (F.sa * va0[0] - qb0[0]) + u[1] * (F.sa * va0[1] - qb0[1])
+                     + u[2] * (F.sa * va0[2] - qb0[2]))
+            if d < bestE - tie:
+                bestE = d
+                ea = i
+                eb = j
+                uE[0] = u[0]
+                uE[1] = u[1]
+                uE[2] = u[2]
+    # faces of A over faces of B, faces over edges, within the tie tolerance
+    if fb >= 0 and (fa < 0 or bestB < bestA - tie):
+        out.axis, out.fa, out.fb, out.depth = AXIS_FACE_B, -1, fb, bestB
+        u_out[0], u_out[1], u_out[2] = uB[0], uB[1], uB[2]
+    elif fa >= 0:
+        out.axis, out.fa, out.fb, out.depth = AXIS_FACE_A, fa, -1, bestA
+        u_out[0], u_out[1], u_out[2] = uA[0], uA[1], uA[2]
+    else:
+        out.axis, out.fa, out.fb, out.depth = AXIS_NONE, -1, -1, -INFINITY
+        u_out[0], u_out[1], u_out[2] = 0.0, 0.0, 1.0
+        return 0
+    if ea >= 0 and bestE < out.depth - tie:
+        out.axis, out.fa, out.fb, out.depth = AXIS_EDGE, ea, eb, bestE
+        u_out[0], u_out[1], u_out[2] = uE[0], uE[1], uE[2]
+    return 1 if out.depth > 0.0 else 0
+
+
+cdef int sat_penetration(const Polytope* A, const double* Ra, double sa, const double* xa,
+                         const Polytope* B, const double* Rb, double sb, const double* xb,
+                         SatResult* out) noexcept nogil:
+    """Minimum-penetration axis of A and B (pure rotations Ra, Rb, scales sa, sb, centres xa, xb): fills
+    out (depth, n from B to A in the world, axis, fa, fb); returns 1 when they overlap (depth > 0), else 0
+    (then depth <= 0 is the largest separating gap found along a candidate axis, not the distance)."""
+    cdef Frame F
+    cdef double u[3]
+    cdef int hit
+    _frame(A, Ra, sa, xa, B, Rb, sb, xb, &F)
+    hit = _sat_frame(A, B, &F, u, out)
+    _mul(Ra, u, out.n)
+    out.n[0] = -out.n[0]
+    out.n[1] = -out.n[1]
+    out.n[2] = -out.n[2]
+    return hit
+
+
+# ---------------------------------------------------------------- contact points
+cdef inline double _orient(const double* o, const double* a, const double* b) noexcept nogil:
+    """2D cross (a - o) x (b - o)."""
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+
+cdef int _hull2(double* P, int n, double tol) noexcept nogil:
+    """Convex hull of the 2D points P[2k], P[2k+1] (k < n), in place, counter-clockwise from the
+    lexicographically lowest point; points closer than tol to the hull's sides or to each other are dropped.
+    Returns the hull size (1, 2 or >= 3)."""
+    cdef double H[2 * (2 * POLY_MAXFEAT + 2)]
+    cdef int i, j, k, m, lo
+    cdef double x, y, dx, dy
+    # insertion sort by (x, y): deterministic, n small
+    for i in range(1, n):
+        x = P[2 * i]
+        y = P[2 * i + 1]
+        j = i - 1
+        while j >= 0 and (P[2 * j] > x or (P[2 * j] == x and P[2 * j + 1] > y)):
+            P[2 * j + 2] = P[2 * j]
+            P[2 * j + 3] = P[2 * j + 1]
+            j -= 1
+        P[2 * j + 2] = x
+        P[2 * j + 3] = y
+    # drop repeated points
+    m = 1
+    for i in range(1, n):
+        dx = P[2 * i] - P[2 * (m - 1)]
+        dy = P[2 * i + 1] - P[2 * (m - 1) + 1]
+        if fabs(dx) + fabs(dy) > tol:
+            P[2 * m] = P[2 * i]
+            P[2 * m + 1] = P[2 * i + 1]
+            m += 1
+    n = m
+    if n <= 2:
+        return n
+    # Andrew's monotone chain; a turn counts only if the point is farther than tol from the chord
+    k = 0
+    for i in range(n):
+        while k >= 2 and _orient(&H[2 * (k - 2)], &H[2 * (k - 1)], &P[2 * i]) <= tol * (
+                fabs(P[2 * i] - H[2 * (k - 2)]) + fabs(P[2 * i + 1] - H[2 * (k - 2) + 1])):
+            k -= 1
+        H[2 * k] = P[2 * i]
+        H[2 * k + 1] = P[2 * i + 1]
+        k += 1
+    lo = k + 1
+    for i in range(n - 2, -1, -1):
+        while k >= lo and _orient(&H[2 * (k - 2)], &H[2 * (k - 1)], &P[2 * i]) <= tol * (
+                fabs(P[2 * i] - H[2 * (k - 2)]) + fabs(P[2 * i + 1] - H[2 * (k - 2) + 1])):
+            k -= 1
+        H[2 * k] = P[2 * i]
+        H[2 * k + 1] = P[2 * i + 1]
+        k += 1
+    k -= 1                      # the last point is the first again
+    if k < 2:
+        k = 2 if n >= 2 else 1  # all collinear: the two extreme points
+        if k == 2:
+            H[2] = P[2 * (n - 1)]
+            H[3] = P[2 * (n - 1) + 1]
+    for i in range(2 * k):
+        P[i] = H[i]
+    return k
+
+
+cdef int _clip_poly(const double* S, int ns, const double* C, int nc, double* out, double tol) noexcept nogil:
+    """Sutherland-Hodgman: the convex polygon S (ns, CCW) clipped by the convex polygon C (nc, CCW);
+    returns the count written to out (room for ns + nc points)."""
+    cdef double buf0[2 * (4 * POLY_MAXFEAT + 4)]
+    cdef double buf1[2 * (4 * POLY_MAXFEAT + 4)]
+    cdef double* src = buf0
+    cdef double* dst = buf1
+    cdef double* tmp
+    cdef int n = ns, m, i, e, k
+    cdef double ex, ey, ln, dp, dq, s
+    cdef const double* c0
+    cdef const double* c1
+    cdef const double* p
+    cdef const double* q
+    for i in range(2 * ns):
+        src[i] = S[i]
+    for e in range(nc):
+        c0 = C + 2 * e
+        c1 = C + 2 * ((e + 1) % nc)
+        ex = c1[0] - c0[0]
+        ey = c1[1] - c0[1]
+        ln = sqrt(ex * ex + ey * ey)
+        if ln == 0.0:
+            continue
+        m = 0
+        for i in range(n):
+            p = src + 2 * i
+            q = src + 2 * ((i + 1) % n)
+            # signed distances to the clip line, > 0 inside (left of c0 -> c1); inside within tol, the
+            # crossing on the line itself
+            dp = (ex * (p[1] - c0[1]) - ey * (p[0] - c0[0])) / ln
+            dq = (ex * (q[1] - c0[1]) - ey * (q[0] - c0[0])) / ln
+            if dp >= -tol:
+                dst[2 * m] = p[0]
+                dst[2 * m + 1] = p[1]
+                m += 1
+                if dq < -tol:
+                    s = dp / (dp - dq) if dp > 0.0 else 0.0
+                    if s > 0.0:
+                        dst[2 * m] = p[0] + s * (q[0] - p[0])
+                        dst[2 * m + 1] = p[1] + s * (q[1] - p[1])
+                        m += 1
+            elif dq > 0.0:             # (q within tol of the line: q itself is the crossing, kept next)
+                s = dp / (dp - dq)
+                dst[2 * m] = p[0] + s * (q[0] - p[0])
+                dst[2 * m + 1] = p[1] + s * (q[1] - p[1])
+                m += 1
+        n = m
+        tmp = src
+        src = dst
+        dst = tmp
+        if n == 0:
+            return 0
+    for i in range(2 * n):
+        out[i] = src[i]
+    return n
+
+
+cdef int _clip_segment(const double* S, const double* C, int nc, double* out, double tol) noexcept nogil:
+    """Cyrus-Beck: the segment S[0..1] -> S[2..3] clipped by the convex polygon C (nc, CCW); 0 or 2 points."""
+    cdef double t0 = 0.0, t1 = 1.0, ex, ey, ln, dp, dq, s
+    cdef int e
+    cdef const double* c0
+    cdef const double* c1
+    for e in range(nc):
+        c0 = C + 2 * e
+        c1 = C + 2 * ((e + 1) % nc)
+        ex = c1[0] - c0[0]
+        ey = c1[1] - c0[1]
+        ln = sqrt(ex * ex + ey * ey)
+        if ln == 0.0:
+            continue
+        dp = (ex * (S[1] - c0[1]) - ey * (S[0] - c0[0])) / ln
+        dq = (ex * (S[3] - c0[1]) - ey * (S[2] - c0[0])) / ln
+        if dp < -tol and dq < -tol:
+            return 0
+        if dp < -tol:
+            s = dp / (dp - dq) if dq > 0.0 else 1.0
+            if s > t0:
+                t0 = s
+        elif dq < -tol:
+            s = dp / (dp - dq) if dp > 0.0 else 0.0
+            if s < t1:
+                t1 = s
+    if t0 > t1:
+        return 0
+    out[0] = S[0] + t0 * (S[2] - S[0])
+    out[1] = S[1] + t0 * (S[3] - S[1])
+    out[2] = S[0] + t1 * (S[2] - S[0])
+    out[3] = S[1] + t1 * (S[3] - S[1])
+    return 2
+
+
+cdef int _segments(const double* S, const double* T, double* out, double tol, bint* crossing) noexcept nogil:
+    """Two 2D segments: their crossing point (1, crossing set) or, parallel, their common interval (2 or 1;
+    0 when apart). A crossing outside the segments (tolerance of the features) is clamped into both."""
+    cdef double dx = S[2] - S[0], dy = S[3] - S[1], ex = T[2] - T[0], ey = T[3] - T[1]
+    cdef double den = dx * ey - dy * ex, ls = sqrt(dx * dx + dy * dy), lt = sqrt(ex * ex + ey * ey)
+    cdef double s, t, a0, a1, lo, hi, ll
+    crossing[0] = False
+    if ls == 0.0 or lt == 0.0:
+        return 0
+    if fabs(den) > 1e-9 * ls * lt:
+        s = ((T[0] - S[0]) * ey - (T[1] - S[1]) * ex) / den
+        t = ((T[0] - S[0]) * dy - (T[1] - S[1]) * dx) / den
+        s = 0.0 if s < 0.0 else (1.0 if s > 1.0 else s)
+        t = 0.0 if t < 0.0 else (1.0 if t > 1.0 else t)
+        out[0] = 0.5 * (S[0] + s * dx + T[0] + t * ex)
+        out[1] = 0.5 * (S[1] + s * dy + T[1] + t * ey)
+        crossing[0] = True
+        return 1
+    # parallel: T's ends as parameters along S
+    ll = ls * ls
+    a0 = ((T[0] - S[0]) * dx + (T[1] - S[1]) * dy) / ll
+    a1 = ((T[2] - S[0]) * dx + (T[3] - S[1]) * dy) / ll
+    lo = a0 if a0 < a1 else a1
+    hi = a1 if a0 < a1 else a0
+    if lo < 0.0:
+        lo = 0.0
+    if hi > 1.0:
+        hi = 1.0
+    if hi < lo - tol / ls:
+        return 0
+    if hi < lo:
+        hi = lo
+    out[0] = S[0] + lo * dx
+    out[1] = S[1] + lo * dy
+    if (hi - lo) * ls <= tol:
+        return 1
+    out[2] = S[0] + hi * dx
+    out[3] = S[1] + hi * dy
+    return 2
+
+
+cdef int _canonical(double* P, int n) noexcept nogil:
+    """Rotate the (CCW) point list to start at its lexicographically lowest point; keep at most POLY_MAXP,
+    evenly spaced; returns the count."""
+    cdef double Q[2 * (4 * POLY_MAXFEAT + 4)]
+    cdef int i, k = 0, m
+    for i in range(1, n):
+        if P[2 * i] < P[2 * k] or (P[2 * i] == P[2 * k] and P[2 * i + 1] < P[2 * k + 1]):
+            k = i
+    for i in range(n):
+        Q[2 * i] = P[2 * ((i + k) % n)]
+        Q[2 * i + 1] = P[2 * ((i + k) % n) + 1]
+    m = n if n <= POLY_MAXP else POLY_MAXP
+    for i in range(m):
+        k = (i * n) // m
+        P[2 * i] = Q[2 * k]
+        P[2 * i + 1] = Q[2 * k + 1]
+    return m
+
+
+cdef int _contact_frame(const Polytope* A, const Polytope* B, const Frame* F, const double* u, double depth,
+                        double ftol, double* pts, int* nfa, int* nfb, double* t1, double* t2,
+                        double* cplane) noexcept nogil:
+    """The contact points in plane coordinates (pts, 2 per point) in A's frame; returns the type, sets the
+    count in nfa[1]... (see contact_points)."""
+    cdef double PA[2 * (2 * POLY_MAXFEAT + 2)]
+    cdef double PB[2 * (2 * POLY_MAXFEAT + 2)]
+    cdef double W[2 * (4 * POLY_MAXFEAT + 4)]
+    cdef double q[3]
+    cdef double w[3]
+    cdef double e[3]
+    cdef double hA = -INFINITY, hB = -INFINITY, s, ln, tol = HULL_TOL * F.L
+    cdef int k, na = 0, nb = 0, n, ax
+    cdef bint crossing
+    cdef const double* v
+    # basis of the plane: t1 from the world axis least aligned with u, t2 = u x t1 (t1, t2, u right-handed)
+    ax = 0
+    if fabs(u[1]) < fabs(u[ax]):
+        ax = 1
+    if fabs(u[2]) < fabs(u[ax]):
+        ax = 2
+    e[0] = 0.0
+    e[1] = 0.0
+    e[2] = 0.0
+    e[ax] = 1.0
+    _cross(u, e, t1)
+    ln = 1.0 / sqrt(_dot(t1, t1))
+    t1[0] *= ln
+    t1[1] *= ln
+    t1[2] *= ln
+    _cross(u, t1, t2)
+    # extreme values
+    for k in range(A.nv):
+        s = F.sa * _dot(u, A.verts + 3 * k)
+        if s > hA:
+            hA = s
+    w[0] = -u[0]
+    w[1] = -u[1]
+    w[2] = -u[2]
+    for k in range(B.nv):
+        _b_point(B, F, k, q)
+        s = _dot(w, q)
+        if s > hB:
+            hB = s
+    cplane[0] = 0.5 * (hA - hB)
+    # the features, projected
+    for k in range(A.nv):
+        v = A.verts + 3 * k
+        if F.sa * _dot(u, v) >= hA - ftol and na < POLY_MAXFEAT:
+            PA[2 * na] = F.sa * _dot(t1, v)
+            PA[2 * na + 1] = F.sa * _dot(t2, v)
+            na += 1
+    for k in range(B.nv):
+        _b_point(B, F, k, q)
+        if _dot(w, q) >= hB - ftol and nb < POLY_MAXFEAT:
+            PB[2 * nb] = _dot(t1, q)
+            PB[2 * nb + 1] = _dot(t2, q)
+            nb += 1
+    na = _hull2(PA, na, tol)
+    nb = _hull2(PB, nb, tol)
+    nfa[0] = na
+    nfb[0] = nb
+    if na == 1 or nb == 1:
+        if na == 1 and nb == 1:
+            pts[0] = 0.5 * (PA[0] + PB[0])
+            pts[1] = 0.5 * (PA[1] + PB[1])
+        elif na == 1:
+            pts[0] = PA[0]
+            pts[1] = PA[1]
+        else:
+            pts[0] = PB[0]
+            pts[1] = PB[1]
+        return PC_VERTEX_FACE * 100 + 1
+    if na == 2 and nb == 2:
+        n = _segments(PA, PB, W, tol, &crossing)
+        if crossing:
+            pts[0] = W[0]
+            pts[1] = W[1]
+            return PC_EDGE_EDGE * 100 + 1
+    elif na == 2:
+        n = _clip_segment(PA, PB, nb, W, tol)
+    elif nb == 2:
+        n = _clip_segment(PB, PA, na, W, tol)
+    else:
+        n = _clip_poly(PA, na, PB, nb, W, tol)
+        if n >= 3:
+            n = _hull2(W, n, tol)          # drop the repeated / collinear corners clipping leaves
+    if n == 0:                             # features apart in the plane (round-off): midpoint of centroids
+        W[0] = 0.0
+        W[1] = 0.0
+        for k in range(na):
+            W[0] += 0.5 * PA[2 * k] / na
+            W[1] += 0.5 * PA[2 * k + 1] / na
+        for k in range(nb):
+            W[0] += 0.5 * PB[2 * k] / nb
+            W[1] += 0.5 * PB[2 * k + 1] / nb
+        n = 1
+    elif n == 2:
+        if fabs(W[0] - W[2]) + fabs(W[1] - W[3]) <= tol:
+            n = 1
+        elif W[2] < W[0] or (W[2] == W[0] and W[3] < W[1]):
+            s = W[0]
+            W[0] = W[2]
+            W[2] = s
+            s = W[1]
+            W[1] = W[3]
+            W[3] = s
+    elif n >= 3:
+        n = _canonical(W, n)
+    for k in range(2 * n):
+        pts[k] = W[k]
+    if n == 1:
+        return PC_VERTEX_FACE * 100 + 1
+    if n == 2:
+        return PC_EDGE_FACE * 100 + 2
+    return PC_FACE_FACE * 100 + n
+
+
+cdef int _points_world(const Polytope* A, const Polytope* B, const Frame* F, const double* Ra,
+                       const double* xa, const double* u, double depth, double ftol,
+                       PolyContact* out) noexcept nogil:
+    cdef double pts[2 * POLY_MAXP]
+    cdef double t1[3]
+    cdef double t2[3]
+    cdef double p[3]
+    cdef double c
+    cdef int code, n, k, i
+    code = _contact_frame(A, B, F, u, depth, ftol, pts, &out.nfa, &out.nfb, t1, t2, &c)
+    out.type = code // 100
+    n = code % 100
+    out.npoints = n
+    for k in range(n):
+        for i in range(3):
+            p[i] = pts[2 * k] * t1[i] + pts[2 * k + 1] * t2[i] + c * u[i]
+        _mul(Ra, p, out.p + 3 * k)
+        for i in range(3):
+            out.p[3 * k + i] += xa[i]
+    return n
+
+
+cdef int contact_points(const Polytope* A, const double* Ra, double sa, const double* xa,
+                        const Polytope* B, const double* Rb, double sb, const double* xb,
+                        const SatResult* sat, double ftol, PolyContact* out) noexcept nogil:
+    """Contact points of A and B for the axis of sat (see the module doc); ftol (a length) is the support
+    tolerance that selects each body's contacting feature. Fills out; returns npoints (0 if sat has no
+    overlap)."""
+    cdef Frame F
+    cdef double u[3]
+    cdef double nw[3]
+    out.depth = sat.depth
+    out.n[0], out.n[1], out.n[2] = sat.n[0], sat.n[1], sat.n[2]
+    if not sat.depth > 0.0:
+        out.type = PC_NONE
+        out.npoints = 0
+        out.nfa = out.nfb = 0
+        return 0
+    _frame(A, Ra, sa, xa, B, Rb, sb, xb, &F)
+    nw[0], nw[1], nw[2] = -sat.n[0], -sat.n[1], -sat.n[2]
+    _tmul(Ra, nw, u)
+    return _points_world(A, B, &F, Ra, xa, u, sat.depth, ftol, out)
+
+
+cdef int polytope_contact(const Polytope* A, const double* Ra, double sa, const double* xa,
+                          const Polytope* B, const double* Rb, double sb, const double* xb,
+                          double ftol, SatResult* sat, PolyContact* out) noexcept nogil:
+    """sat_penetration then contact_points, sharing the frame; returns npoints (0: no overlap)."""
+    cdef Frame F
+    cdef double u[3]
+    _frame(A, Ra, sa, xa, B, Rb, sb, xb, &F)
+    if not _sat_frame(A, B, &F, u, sat):
+        _mul(Ra, u, sat.n)
+        sat.n[0], sat.n[1], sat.n[2] = -sat.n[0], -sat.n[1], -sat.n[2]
+        out.depth = sat.depth
+        out.n[0], out.n[1], out.n[2] = sat.n[0], sat.n[1], sat.n[2]
+        out.type = PC_NONE
+        out.npoints = 0
+        out.nfa = out.nfb = 0
+        return 0
+    _mul(Ra, u, sat.n)
+    sat.n[0], sat.n[1], sat.n[2] = -sat.n[0], -sat.n[1], -sat.n[2]
+    out.depth = sat.depth
+    out.n[0], out.n[1], out.n[2] = sat.n[0], sat.n[1], sat.n[2]
+    return _points_world(A, B, &F, Ra, xa, u, sat.depth, ftol, out)
+
+
+# ---------------------------------------------------------------- Python entries (tests, tools)
+def _pose(q):
+    cdef double[::1] qq = np.ascontiguousarray(q, float)
+    R = np.empty(9)
+    cdef double[::1] r = R
+    quat_to_rot(&qq[0], &r[0])
+    return R
+
+
+def pair(TopologyView tv, int ia, int ib, xa, qa, xb, qb, double sa=1.0, double sb=1.0, double ftol=-1.0,
+         bint points=True):
+    """One pair (rows ia, ib of the packed topology) at poses (x, unit quaternion q (w, x, y, z), scale s).
+    Returns (overlap, depth, normal from B to A, axis, fa, fb, type, points (npoints, 3), nfa, nfb);
+    ftol < 0 means 1e-9 (sa radius_a + sb radius_b). With points false only the first six are computed
+    (type 0, no points)."""
+    if not (0 <= ia < tv.t.nrows and 0 <= ib < tv.t.nrows) or not (tv.t.poly[ia] and tv.t.poly[ib]):
+        raise ValueError("rows %d, %d are not polytopes of this table" % (ia, ib))
+    cdef Polytope A, B
+    cdef SatResult sat
+    cdef PolyContact pc
+    cdef double[::1] Ra = _pose(qa), Rb = _pose(qb)
+    cdef double[::1] xa_ = np.ascontiguousarray(xa, float), xb_ = np.ascontiguousarray(xb, float)
+    cdef int hit
+    polytope_ref(&tv.t, ia, &A)
+    polytope_ref(&tv.t, ib, &B)
+    if ftol < 0:
+        ftol = 1e-9 * (sa * A.radius + sb * B.radius)
+    with nogil:
+        if points:
+            polytope_contact(&A, &Ra[0], sa, &xa_[0], &B, &Rb[0], sb, &xb_[0], ftol, &sat, &pc)
+        else:
+            sat_penetration(&A, &Ra[0], sa, &xa_[0], &B, &Rb[0], sb, &xb_[0], &sat)
+            pc.type = PC_NONE
+            pc.npoints = 0
+            pc.nfa = pc.nfb = 0
+    hit = 1 if sat.depth > 0.0 else 0
+    pts = np.array([[pc.p[3 * k], pc.p[3 * k + 1], pc.p[3 * k + 2]] for k in range(pc.npoints)]).reshape(-1, 3)
+    return (bool(hit), sat.depth, np.array([sat.n[0], sat.n[1], sat.n[2]]), int(sat.axis), sat.fa, sat.fb,
+            int(pc.type), pts, pc.nfa, pc.nfb)
+
+
+def time_pairs(TopologyView tv, int[::1] ia, int[::1] ib, double[:, ::1] xa, double[:, ::1] qa,
+               double[:, ::1] xb, double[:, ::1] qb, int reps, double ftol, bint points=True):
+    """Run the m pairs reps times in one nogil loop (benchmarks); returns (seconds per query, hits)."""
+    import time
+    cdef int m = ia.shape[0], r, k, hits = 0
+    cdef Polytope A, B
+    cdef SatResult sat
+    cdef PolyContact pc
+    cdef double[:, ::1] Ra = np.array([_pose(q) for q in np.asarray(qa)]).reshape(-1, 9)
+    cdef double[:, ::1] Rb = np.array([_pose(q) for q in np.asarray(qb)]).reshape(-1, 9)
+    t0 = time.perf_counter()
+    with nogil:
+        for r in range(reps):
+            for k in range(m):
+                polytope_ref(&tv.t, ia[k], &A)
+                polytope_ref(&tv.t, ib[k], &B)
+                if points:
+                    hits += polytope_contact(&A, &Ra[k, 0], 1.0, &xa[k, 0], &B, &Rb[k, 0], 1.0, &xb[k, 0],
+                                             ftol, &sat, &pc) > 0
+                else:
+                    hits += sat_penetration(&A, &Ra[k, 0], 1.0, &xa[k, 0], &B, &Rb[k, 0], 1.0, &xb[k, 0], &sat)
+    return (time.perf_counter() - t0) / (reps * m), hits
+
+
+def _hull2_py(pts, double tol=1e-12):
+    """2D hull as the kernels compute it (tests)."""
+    cdef double P[2 * (2 * POLY_MAXFEAT + 2)]
+    a = np.ascontiguousarray(pts, float).reshape(-1)
+    cdef int n = a.shape[0] // 2, k, i
+    for i in range(2 * n):
+        P[i] = a[i]
+    k = _hull2(P, n, tol)
+    return np.array([P[i] for i in range(2 * k)]).reshape(-1, 2)

@@ -1,0 +1,262 @@
+"""Polytope topology (faces as planar polygons, edges, adjacency) and its flat packing for the kernels.
+
+Every polytope shape (``Box`` incl. ``cube``, ``Polyhedron`` incl. ``tetrahedron`` and ``pinacoid``) builds a
+``Topology`` at construction, in its body frame, from its vertices and outward hull triangles:
+
+* ``vertices`` (nv, 3): a polyhedron's ``shape.vertices`` (same order, so vertex ids are GJK's ids); a box's
+  8 corners in ``box_corners`` order (corner k: bit j set means +h_j, dem/shapes/_support.pxd).
+* ``faces``: list of int arrays, the vertex ids of each face polygon, counter-clockwise seen from outside.
+  Coplanar hull triangles (normals within ``COPLANAR`` radians, sharing an edge) are merged, and vertices
+  that are interior to a polygon side (collinear, 180 degree corners) are dropped from the polygon.
+* ``face_normals`` (nf, 3) unit outward and ``face_offsets`` (nf,): the face plane is n.x = d, the body is
+  n.x <= d; d is the maximum of n.v over the face's vertices (the plane supports the body).
+* ``edges`` (ne, 2) vertex ids (v0, v1) and ``edge_faces`` (ne, 2) the two adjacent faces (f0, f1), f0 the
+  face that runs v0 -> v1 in its counter-clockwise order, f1 the one that runs v1 -> v0.
+
+Euler's V - E + F = 2 is checked on the vertices the faces use.
+
+``pack_topology(rows)`` packs the topologies of a list of shapes (e.g. ``ShapeTable.rows``, so row indices
+match the shape table) into flat arrays for a future ``TableView`` field, per row offsets and counts into
+shared arrays like ``voff``/``nv`` of dem/shapes/table.py (see ``pack_topology``). Indices stored in the
+shared arrays are local to the row (a vertex id is 0..nv-1 of that row, a face id 0..nf-1). The kernels
+(dem/contact/_polytope.pyx) read them through ``TopologyView``.
+"""
+import numpy as np
+
+COPLANAR = 1e-9          # radians: adjacent hull triangles closer than this are one face
+COLLINEAR = 1e-12        # |sin| of a polygon corner below which the corner vertex is dropped
+
+
+class Topology:
+    """Faces, normals, offsets and edges of a convex polytope in its body frame (see the module doc)."""
+
+    def __init__(self, vertices, faces, face_normals, face_offsets, edges, edge_faces):
+        self.vertices = np.ascontiguousarray(vertices, float).reshape(-1, 3)
+        self.faces = [np.asarray(f, np.int32) for f in faces]
+        self.face_normals = np.ascontiguousarray(face_normals, float).reshape(-1, 3)
+        self.face_offsets = np.ascontiguousarray(face_offsets, float).reshape(-1)
+        self.edges = np.ascontiguousarray(edges, np.int32).reshape(-1, 2)
+        self.edge_faces = np.ascontiguousarray(edge_faces, np.int32).reshape(-1, 2)
+
+    @property
+    def nv(self):
+        return len(self.vertices)
+
+    @property
+    def nf(self):
+        return len(self.faces)
+
+    @property
+    def ne(self):
+        return len(self.edges)
+
+    def __repr__(self):
+        return "<Topology V=%d E=%d F=%d>" % (self.nv, self.ne, self.nf)
+
+
+def _edges_of(faces):
+    """Edges (v0, v1) and their faces (f0 running v0 -> v1, f1 running v1 -> v0), in first-seen order."""
+    seen = {}
+    edges, ef = [], []
+    for fi, f in enumerate(faces):
+        m = len(f)
+        for k in range(m):
+            a, b = int(f[k]), int(f[(k + 1) % m])
+            key = (min(a, b), max(a, b))
+            if key in seen:
+                e = seen[key]
+                if ef[e][1] != -1 or edges[e] != (b, a):
+                    raise ValueError("topology: edge %r is not shared by exactly two faces with opposite "
+                                     "orientations" % (key,))
+                ef[e][1] = fi
+            else:
+                seen[key] = len(edges)
+                edges.append((a, b))
+                ef.append([fi, -1])
+    if any(f1 == -1 for _, f1 in ef):
+        raise ValueError("topology: open surface (an edge with one face)")
+    return np.array(edges, np.int32).reshape(-1, 2), np.array(ef, np.int32).reshape(-1, 2)
+
+
+def _check_euler(faces, edges):
+    used = np.unique(np.concatenate(faces))
+    if len(used) - len(edges) + len(faces) != 2:
+        raise ValueError("topology: Euler characteristic %d != 2" % (len(used) - len(edges) + len(faces)))
+
+
+def from_triangles(V, F):
+    """Topology of the convex polytope with vertices V and outward triangles F (a closed convex hull)."""
+    V = np.asarray(V, float).reshape(-1, 3)
+    F = np.asarray(F, np.int64).reshape(-1, 3)
+    n = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    # union-find over triangles sharing an edge with (nearly) equal normals
+    parent = list(range(len(F)))
+
+    def root(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+    by_edge = {}
+    for t, tri in enumerate(F):
+        for k in range(3):
+            a, b = int(tri[k]), int(tri[(k + 1) % 3])
+            by_edge.setdefault((min(a, b), max(a, b)), []).append(t)
+    for ts in by_edge.values():
+        if len(ts) == 2:
+            t0, t1 = ts
+            if np.linalg.norm(n[t0] - n[t1]) < COPLANAR:
+                r0, r1 = root(t0), root(t1)
+                if r0 != r1:
+                    parent[max(r0, r1)] = min(r0, r1)
+    groups = {}
+    for t in range(len(F)):
+        groups.setdefault(root(t), []).append(t)
+    faces, normals, offsets = [], [], []
+    for r in sorted(groups):                       # faces in the order of their first triangle
+        ts = groups[r]
+        area = np.linalg.norm(np.cross(V[F[ts, 1]] - V[F[ts, 0]], V[F[ts, 2]] - V[F[ts, 0]]), axis=1)
+        nf = (n[ts] * area[:, None]).sum(0)
+        nf /= np.linalg.norm(nf)
+        # the boundary of the group: directed triangle edges whose reverse is not in the group
+        directed = set()
+        for t in ts:
+            for k in range(3):
+                directed.add((int(F[t, k]), int(F[t, (k + 1) % 3])))
+        nxt = {a: b for (a, b) in directed if (b, a) not in directed}
+        start = min(nxt)
+        loop = [start]
+        while True:
+            b = nxt[loop[-1]]
+            if b == start:
+                break
+            loop.append(b)
+            if len(loop) > len(nxt):
+                raise ValueError("topology: face boundary is not a single loop")
+        loop = _drop_collinear(V, loop, nf)
+        faces.append(np.array(loop, np.int32))
+        normals.append(nf)
+        offsets.append(float((V[loop] @ nf).max()))
+    edges, ef = _edges_of(faces)
+    _check_euler(faces, edges)
+    return Topology(V, faces, normals, offsets, edges, ef)
+
+
+def _drop_collinear(V, loop, nf):
+    """The loop without vertices at 180 degree corners (they would make zero-length-turn edges)."""
+    changed = True
+    loop = list(loop)
+    while changed and len(loop) > 3:
+        changed = False
+        for k in range(len(loop)):
+            a, b, c = V[loop[k - 1]], V[loop[k]], V[loop[(k + 1) % len(loop)]]
+            u, w = b - a, c - b
+            s = np.dot(np.cross(u, w), nf)
+            if abs(s) <= COLLINEAR * np.linalg.norm(u) * np.linalg.norm(w) and np.dot(u, w) > 0:
+                del loop[k]
+                changed = True
+                break
+    k0 = int(np.argmin(loop))                     # start at the lowest vertex id: deterministic
+    return loop[k0:] + loop[:k0]
+
+
+def box_topology(half):
+    """Topology of the box of half sides ``half``: corners in box_corners order (bit j set: +h_j), faces
+    -x, +x, -y, +y, -z, +z (face 2j + s has normal (2s - 1) e_j)."""
+    h = np.asarray(half, float)
+    V = np.array([[(1 if k & 1 else -1) * h[0], (1 if k & 2 else -1) * h[1], (1 if k & 4 else -1) * h[2]]
+                  for k in range(8)])
+    faces, normals, offsets = [], [], []
+    for j in range(3):
+        a, b = (j + 1) % 3, (j + 2) % 3           # (j, a, b) right-handed
+        for s in (0, 1):
+            bit = (1 << j) if s else 0
+            # corners of this face in counter-clockwise order seen from outside
+            quad = [bit, bit | (1 << a), bit | (1 << a) | (1 << b), bit | (1 << b)]
+            if not s:
+                quad = quad[::-1]
+            k0 = int(np.argmin(quad))
+            quad = quad[k0:] + quad[:k0]
+            nrm = np.zeros(3)
+            nrm[j] = 1.0 if s else -1.0
+            faces.append(np.array(quad, np.int32))
+            normals.append(nrm)
+            offsets.append(float(h[j]))
+    edges, ef = _edges_of(faces)
+    _check_euler(faces, edges)
+    return Topology(V, faces, normals, offsets, edges, ef)
+
+
+def check(topo, tol=1e-9):
+    """Raise if the topology is not that of a convex polytope (tests): planar CCW faces, supporting planes."""
+    V = topo.vertices
+    R = max(np.linalg.norm(V, axis=1).max(), 1e-300)
+    for f, nrm, d in zip(topo.faces, topo.face_normals, topo.face_offsets):
+        P = V[f]
+        if np.abs(P @ nrm - d).max() > tol * R:
+            raise ValueError("non-planar face")
+        if (V @ nrm).max() > d + tol * R:
+            raise ValueError("face plane does not support the body")
+        area = sum(np.cross(P[k] - P[0], P[k + 1] - P[0]) for k in range(1, len(P) - 1))
+        if np.dot(area, nrm) <= 0:
+            raise ValueError("face not counter-clockwise seen from outside")
+
+
+# ---------------------------------------------------------------- flat packing
+PACKED_COLUMNS = ("poly", "voff", "nv", "foff", "nf", "eoff", "ne", "fvoff", "radius",
+                  "verts", "face_normal", "face_offset", "face_first", "face_count", "face_verts",
+                  "edge_verts", "edge_faces")
+
+
+def pack_topology(shapes):
+    """Flat arrays of the topologies of ``shapes`` (one row each; rows without a topology have zero counts).
+
+    Per row s (int64 offsets, int32 counts, like voff/nv of the shape table):
+      ``poly[s]`` 1 if the row is a polytope; ``voff[s], nv[s]`` into ``verts`` (V, 3) (the topology's
+      vertices, body frame); ``foff[s], nf[s]`` into the face arrays ``face_normal`` (F, 3), ``face_offset``
+      (F,), ``face_first`` (F,) and ``face_count`` (F,); ``fvoff[s]`` into ``face_verts``: face f of row s has
+      the vertex ids ``face_verts[fvoff[s] + face_first[foff[s] + f] + k]``, k < ``face_count[foff[s] + f]``;
+      ``eoff[s], ne[s]`` into ``edge_verts`` (E, 2) and ``edge_faces`` (E, 2); ``radius[s]`` the largest vertex
+      norm. All ids stored are local to the row. Empty shared arrays get one dummy entry (never read).
+    """
+    n = len(shapes)
+    out = {k: np.zeros(n, np.int64) for k in ("voff", "foff", "eoff", "fvoff")}
+    out.update({k: np.zeros(n, np.int32) for k in ("poly", "nv", "nf", "ne")})
+    out["radius"] = np.zeros(n)
+    V, FN, FO, FF, FC, FV, EV, EF = [], [], [], [], [], [], [], []
+    nv = nf = ne = nfv = 0
+    for i, s in enumerate(shapes):
+        t = getattr(s, "topology", None)
+        if t is None:
+            continue
+        out["poly"][i] = 1
+        out["voff"][i], out["nv"][i] = nv, t.nv
+        out["foff"][i], out["nf"][i] = nf, t.nf
+        out["eoff"][i], out["ne"][i] = ne, t.ne
+        out["fvoff"][i] = nfv
+        out["radius"][i] = float(np.linalg.norm(t.vertices, axis=1).max())
+        V.append(t.vertices)
+        FN.append(t.face_normals)
+        FO.append(t.face_offsets)
+        counts = np.array([len(f) for f in t.faces], np.int32)
+        FC.append(counts)
+        FF.append(np.r_[0, np.cumsum(counts)[:-1]].astype(np.int32))
+        FV.append(np.concatenate(t.faces).astype(np.int32))
+        EV.append(t.edges)
+        EF.append(t.edge_faces)
+        nv, nf, ne, nfv = nv + t.nv, nf + t.nf, ne + t.ne, nfv + int(counts.sum())
+
+    def cat(blocks, shape, dtype):
+        if not blocks:
+            return np.zeros(shape, dtype)
+        return np.ascontiguousarray(np.concatenate(blocks).astype(dtype))
+    out["verts"] = cat(V, (1, 3), float)
+    out["face_normal"] = cat(FN, (1, 3), float)
+    out["face_offset"] = cat(FO, (1,), float)
+    out["face_first"] = cat(FF, (1,), np.int32)
+    out["face_count"] = cat(FC, (1,), np.int32)
+    out["face_verts"] = cat(FV, (1,), np.int32)
+    out["edge_verts"] = cat(EV, (1, 2), np.int32)
+    out["edge_faces"] = cat(EF, (1, 2), np.int32)
+    return out
