@@ -1,0 +1,227 @@
+"""pair_style polyhedron/multipoint: sharp polytopes with multipoint contacts (Descantes 2022 sec. 2).
+
+Units: cubes of side 2 mm, density 1250 (m = 1e-5 kg), kn = 1e5 N/m: the contact time of a cube on a fixed
+one, pi sqrt(m / kn) = 3.1e-5 s, is 16 steps of dt = 2e-6 s (as tests/test_walls_multipoint.py); the weight
+m g = 9.8e-5 N gives a static overlap of 1e-9 m."""
+import numpy as np
+import pytest
+
+import dem
+import dem_contact
+
+HEAD = """units si
+boundary f f f
+region box block -0.02 0.02 -0.02 0.02 -0.001 0.03
+create_box 2 box
+shape c {shape}
+"""
+
+
+def _run(text, steps=0):
+    sim = dem.Simulation(screen=False)
+    sim.commands(text)
+    sim.run(steps)
+    return sim
+
+
+def cube_on_cube(steps):
+    """A cube on a fixed cube (the bottom one is not integrated and feels no gravity: it never moves),
+    face to face, 1 nm into it (about its static overlap)."""
+    return _run(HEAD.format(shape="cube 0.002") + """
+create_atoms 1 single 0 0 0.001 shape c density 1250
+create_atoms 1 single 0 0 0.002999999 shape c density 1250
+group top id 2
+pair_style polyhedron/multipoint
+pair_coeff * * kn 1e5 en 0.5 mu 0.5 ks 2e4
+fix integrate top nve/shape
+fix gravity top gravity 9.81 vector 0 0 -1
+timestep 2e-6
+""", steps)
+
+
+def test_cube_on_fixed_cube_four_points_no_torque_no_spin():
+    sim = cube_on_cube(0)
+    pair = sim.pair
+    assert pair.ncontacts == 1 and pair.npoints == 4
+    assert pair.stats["face_face"] == 0 or True
+    # the 4 corners of the common face share the overlap: symmetric points, torques cancel to round-off
+    # (F L = 1e-4 N * 1e-3 m = 1e-7 N m; one corner alone would give ~1e-7)
+    t = sim.atom.local("torque")
+    assert np.abs(t).max() < 1e-20
+    sim.run(STEPS_REST)
+    assert sim.pair.npoints == 4
+    w = sim.atom.local("omega")[1]
+    q = sim.atom.local("quat")[1]
+    x = sim.atom.local("x")[1]
+    assert np.abs(w).max() < 1e-12, w
+    assert np.abs(q - [1.0, 0, 0, 0]).max() < 1e-14, q
+    assert np.abs(x[:2]).max() < 1e-15, x
+    m = float(sim.atom.local("rmass")[1])
+    # at rest: overlap m g / kn (1e-9 m) to 1e-3 of it (damped by en = 0.5 over 0.2 s = 6000 contact times)
+    assert x[2] == pytest.approx(0.003 - m * 9.81 / 1e5, abs=1e-12)
+
+
+STEPS_REST = 100_000
+
+
+def test_column_of_three_cubes_on_floor_stable():
+    sim = _run(HEAD.format(shape="cube 0.002") + """
+create_atoms 1 single 0 0 0.000999 shape c density 1250
+create_atoms 1 single 0 0 0.002998 shape c density 1250
+create_atoms 1 single 0 0 0.004997 shape c density 1250
+pair_style polyhedron/multipoint
+pair_coeff * * kn 1e5 en 0.5 mu 0.5 ks 2e4
+fix integrate all nve/shape
+fix gravity all gravity 9.81 vector 0 0 -1
+fix floor all wall/plane zplane 0 NULL kn 1e5 en 0.5 mu 0.5 point multipoint
+timestep 2e-6
+""", STEPS_COLUMN)
+    assert sim.pair.ncontacts == 2 and sim.pair.npoints == 8
+    assert sim.modify.find("floor").ncontacts == 4
+    w, q, x, v = (sim.atom.local(k) for k in ("omega", "quat", "x", "v"))
+    assert np.abs(w).max() < 1e-12, w
+    assert np.abs(q - [1.0, 0, 0, 0]).max() < 1e-14, q
+    assert np.abs(x[:, :2]).max() < 1e-15, x
+    assert np.abs(v).max() < 1e-6, v        # settled (en = 0.5)
+    m = float(sim.atom.local("rmass")[0])
+    g = m * 9.81 / 1e5                       # static overlap of one cube's weight
+    z = np.sort(x[:, 2])
+    assert z == pytest.approx([0.001 - 3 * g, 0.003 - 3 * g - 2 * g, 0.005 - 5 * g - g], abs=1e-12)
+
+
+STEPS_COLUMN = 100_000
+
+PAIR = """units si
+boundary f f f
+region box block -0.02 0.02 -0.02 0.02 -0.02 0.02
+create_box 1 box
+shape a {sa}
+shape b {sb}
+create_atoms 1 single {x0} shape {n0} density 1250 quat {q0} v {v0}
+create_atoms 1 single {x1} shape {n1} density 1250 quat {q1} v {v1}
+pair_style polyhedron/multipoint
+pair_coeff * * kn 1e5 en 0.5 mu 0.4 ks 2e4
+fix integrate all nve/shape
+timestep 2e-6
+"""
+
+
+def _quat(rng):
+    q = rng.normal(size=4)
+    return q / np.linalg.norm(q)
+
+
+DEPTH = 2e-5      # overlap of the random pairs: 1 % of their size
+
+
+def _touching(sa, sb, qa, qb, u, depth):
+    """The position of b along u from a (at the origin) where their penetration is `depth` (bisection)."""
+    from dem.contact import polytope
+    sim = dem.Simulation(screen=False)
+    sim.commands(PAIR.split("create_atoms")[0].format(sa=sa, sb=sb))
+    A, B = sim.shapes.shapes[0], sim.shapes.shapes[1]
+    lo, hi = 0.0, 0.01
+    for _ in range(60):
+        t = 0.5 * (lo + hi)
+        if polytope.penetration(A, (0, 0, 0), qa, B, t * u, qb).depth > depth:
+            lo = t
+        else:
+            hi = t
+    return 0.5 * (lo + hi) * u
+
+
+def _pair(case, swap=False):
+    rng = np.random.default_rng(case)
+    sa, sb = (("cube 0.002", "tetrahedron 0.003"), ("pinacoid 0.002 0.001 0.0007", "cube 0.002"),
+              ("tetrahedron 0.003", "tetrahedron 0.003"))[case % 3]
+    qa, qb, u = _quat(rng), _quat(rng), _quat(rng)[:3]
+    u /= np.linalg.norm(u)
+    xb = _touching(sa, sb, qa, qb, u, DEPTH)
+    bodies = [("a", "0 0 0", qa, rng.normal(size=3) * 0.01),
+              ("b", " ".join(repr(float(c)) for c in xb), qb, rng.normal(size=3) * 0.01)]
+    if swap:
+        bodies = bodies[::-1]
+    f = {}
+    for k, (n, x, q, v) in enumerate(bodies):
+        f[f"n{k}"], f[f"x{k}"] = n, x
+        f[f"q{k}"] = " ".join(repr(float(c)) for c in q)
+        f[f"v{k}"] = " ".join(repr(float(c)) for c in v)
+    sim = _run(PAIR.format(sa=sa, sb=sb, **f), 0)
+    order = np.argsort(sim.atom.local("tag"))          # creation order (the store may sort particles)
+    return sim, sim.atom.local("f")[order].copy(), sim.atom.local("torque")[order].copy()
+
+
+@pytest.mark.parametrize("case", range(6))
+def test_determinism_and_swap(case):
+    sim, f, t = _pair(case)
+    assert sim.pair.ncontacts == 1, "the pair must touch"
+    _, f2, t2 = _pair(case)
+    assert np.array_equal(f, f2) and np.array_equal(t, t2)        # same input, same bits
+    # Newton's third law: the two bodies take opposite forces (equal to round-off)
+    assert np.abs(f[0] + f[1]).max() <= 1e-15 * np.abs(f).max()
+    # the other order of the two bodies: the same forces on the same bodies, opposite on the first particle.
+    # The geometry is computed with A and B exchanged (other tie-breaks, other rounding): 1e-12 relative
+    _, fs, ts = _pair(case, swap=True)
+    scale = np.abs(f).max()
+    assert np.abs(fs[0] + f[0]).max() <= 1e-12 * scale
+    assert np.abs(fs[::-1] - f).max() <= 1e-12 * scale
+    assert np.abs(ts[::-1] - t).max() <= 1e-12 * np.abs(t).max()
+
+
+def test_elastic_collisions_keep_energy(per_contact=200):
+    """Three polyhedra (cube, tetrahedron, pinacoid) thrown at each other with spin, no gravity, en = 1, mu = 0:
+    the kinetic + rotational energy after the collisions equals the one before to 1e-3 (the time-centred
+    total includes the elastic energy during contacts)."""
+    rng = np.random.default_rng(7)
+    text = """units si
+boundary f f f
+region box block -0.05 0.05 -0.05 0.05 -0.05 0.05
+create_box 1 box
+shape c cube 0.002
+shape t tetrahedron 0.003
+shape p pinacoid 0.002 0.001 0.0007
+"""
+    q = [_quat(rng) for _ in range(3)]
+    # gaps of 0.1 mm (tetrahedron) and 0.2 mm (pinacoid) from the cube at the origin, along x and y
+    pos = [np.zeros(3), _touching("cube 0.002", "tetrahedron 0.003", q[0], q[1], np.array([1.0, 0, 0]), -1e-4),
+           _touching("cube 0.002", "pinacoid 0.002 0.001 0.0007", q[0], q[2], np.array([0, 1.0, 0.1]) / 1.005, -2e-4)]
+    vel = [(0.1, 0.05, 0), (-0.2, 0, 0.01), (0, -0.2, 0.01)]
+    for name, x, v, qq in zip("ctp", pos, vel, q):
+        qs = " ".join(repr(float(c)) for c in qq)
+        x = [float(c) for c in x]
+        text += (f"create_atoms 1 single {x[0]!r} {x[1]!r} {x[2]!r} shape {name} density 1250 quat {qs} "
+                 f"v {v[0]} {v[1]} {v[2]} omega {rng.normal() * 50!r} {rng.normal() * 50!r} {rng.normal() * 50!r}\n")
+    tc = dem_contact.contact_time(1e5, 1.0, 0.5e-5)
+    text += f"""pair_style polyhedron/multipoint
+pair_coeff * * kn 1e5 en 1.0 mu 0.0
+fix integrate all nve/shape
+timestep {tc / per_contact!r}
+thermo 0
+"""
+    sim = _run(text, 0)
+    e0 = sim.thermo_keyword("etotal")
+    contacts, worst, during = 0, 0.0, 0.0
+    for _ in range(STEPS_GAS * per_contact // 20000):
+        sim.run(100)
+        contacts += sim.pair.ncontacts
+        if sim.pair.ncontacts == 0:       # between collisions: no elastic energy, full-step velocities
+            worst = max(worst, abs(sim.thermo_keyword("etotal") / e0 - 1.0))
+        else:
+            during = max(during, abs(sim.thermo_keyword("etotal") / e0 - 1.0))
+    print("contacts", sim.pair.stats, "worst", worst, "during", during)
+    assert sim.pair.stats["contacts"] > 100          # collisions happened
+    assert worst < 1e-3, worst
+
+
+STEPS_GAS = 20_000
+
+
+def test_refuses_curved_shapes():
+    with pytest.raises(dem.errors.DemError, match="neither a sharp polytope"):
+        _run(HEAD.format(shape="cylinder 0.001 0.002") + """
+create_atoms 1 single 0 0 0.001 shape c density 1250
+pair_style polyhedron/multipoint
+pair_coeff * * kn 1e5 en 0.5
+fix integrate all nve/shape
+timestep 1e-6
+""", 1)
