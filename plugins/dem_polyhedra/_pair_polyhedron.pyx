@@ -3,9 +3,13 @@
 with as many contact points as the contact geometry has (Descantes 2022 sec. 2).
 
 Per listed pair whose bounding spheres overlap:
-* two polytopes: polytope_contact (dem/contact/_polytope.pyx: exact separating-axis depth and normal, the
-  contacting features clipped on the contact plane): alpha = 1 (vertex/face, edge/edge), 2 (edge/face) or
-  >= 3 (face/face) points, all with the shared maximum overlap;
+* two polytopes: sat_penetration then contact_points (dem/contact/_polytope.pyx: exact separating-axis
+  depth and normal, the contacting features clipped on the contact plane): alpha = 1 (vertex/face,
+  edge/edge), 2 (edge/face) or >= 3 (face/face) points, all with the shared maximum overlap. A body's
+  contacting feature is its vertices within ftol = ftol_rel (r_i + r_j) + delta of its deepest vertex along
+  the normal: every vertex inside the overlap slab (as a wall's `point multipoint` takes every vertex
+  beyond the wall), so a face tilted by less than delta / its size still touches with all its corners,
+  and the point set does not flip between 1, 2 and 4 points from round-off;
 * a sphere and a polytope: crust_contact (dem/contact/_gjk.pyx) of the sharp body (crust 0) and the
   sphere's centre (a point core of crust = its radius): one point;
 * two spheres: analytic, one point.
@@ -26,7 +30,7 @@ from dem._particles cimport ParticleView, Particles
 from dem.contact.record cimport Contact
 from dem.contact._gjk cimport crust_contact, CONTACT_NONE, NFEAT
 from dem.contact._polytope cimport (Polytope, TopoTable, TopologyView, SatResult, PolyContact, polytope_ref,
-                                    polytope_contact, POLY_MAXP)
+                                    sat_penetration, contact_points, POLY_MAXP)
 from dem.shapes._support cimport ShapeRef, Kind, quat_to_rot, NPARAM
 from dem.shapes._table cimport ShapeView, TableView, body_ref, round_body
 from dem_contact.apply cimport Body, apply_pair
@@ -199,8 +203,12 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     _rot(P, j, Rj)
                     polytope_ref(TT, si, &A)
                     polytope_ref(TT, sj, &B)
-                    npt = polytope_contact(&A, Ri, si_scale, &P.x[3 * i], &B, Rj, sj_scale, &P.x[3 * j],
-                                           ftol_rel * rsum, &sat, &pc)
+                    # contacting features: the vertices within ftol of the deepest one along the normal,
+                    # ftol = ftol_rel L + the overlap, i.e. every vertex inside the overlap slab
+                    npt = sat_penetration(&A, Ri, si_scale, &P.x[3 * i], &B, Rj, sj_scale, &P.x[3 * j], &sat)
+                    if npt:
+                        npt = contact_points(&A, Ri, si_scale, &P.x[3 * i], &B, Rj, sj_scale, &P.x[3 * j],
+                                             &sat, ftol_rel * rsum + sat.depth, &pc)
                     typ = pc.type
                     for q in range(npt):
                         con[q].delta = pc.depth
