@@ -290,3 +290,45 @@ timestep 2e-6
         w = sim.atom.local("omega")[np.argsort(sim.atom.local("tag"))][1]
         assert np.abs(w).max() < 1e-12, w
     assert sim.pair.npoints == 2
+
+
+def _two_cubes(law, depth, v, coeff):
+    """A cube on a cube (bottom at rest, face to face, `depth` into it), the top one moving at v: forces of
+    the first step (nothing integrated)."""
+    sim = _run(HEAD.format(shape="cube 0.002") + f"""
+create_atoms 1 single 0 0 0.001 shape c density 1250
+create_atoms 1 single 0 0 {0.003 - depth!r} shape c density 1250 v {v[0]} {v[1]} {v[2]}
+pair_style polyhedron/multipoint law {law}
+pair_coeff * * kn 1e5 {coeff}
+timestep 2e-6
+""")
+    top = int(np.argmax(sim.atom.local("tag")))
+    assert sim.pair.npoints == 4
+    return sim.atom.local("f")[top].copy()
+
+
+def test_descantes_law_no_attraction():
+    """Separating at 1 m/s with 1 nm of overlap and en = 0.1: the dashpot (2 beta sqrt(kn m_ij) U_n = 0.83 N)
+    exceeds the spring (kn delta = 1e-4 N): the Grains3D law pulls the cube back, Descantes' eq. 3 gives
+    no force at all."""
+    f = _two_cubes("grains3d", 1e-9, (0, 0, 1.0), "en 0.1")
+    assert f[2] < -0.5
+    f = _two_cubes("descantes", 1e-9, (0, 0, 1.0), "en 0.1")
+    assert np.array_equal(f, np.zeros(3))
+    # approaching: the same as Grains3D (kn delta - nu_n U_n > 0)
+    fg = _two_cubes("grains3d", 1e-6, (0, 0, -0.01), "en 0.1")
+    fd = _two_cubes("descantes", 1e-6, (0, 0, -0.01), "en 0.1")
+    assert fd[2] > 0.1 and fd == pytest.approx(fg, rel=1e-14, abs=0)
+
+
+@pytest.mark.parametrize("gamma_t", [1e3, 1e7])
+def test_descantes_law_viscous_friction_capped_by_coulomb(gamma_t):
+    """Sliding at 1 cm/s on 1 um of overlap (F_n = kn delta = 0.1 N, 1/4 at each corner): the tangential
+    force is -min(2 gamma_t m_ij |U_t|, mu F_n): 1e-4 N (viscous) for gamma_t = 1e3, the Coulomb cap 0.05 N
+    for gamma_t = 1e7; no spring (ks is not used)."""
+    f = _two_cubes("descantes", 1e-6, (0.01, 0, 0), f"en 0.5 mu 0.5 gamma_t {gamma_t} ks 1e4")
+    fn = 1e5 * 1e-6
+    m_ij = 0.5 * 1250 * 0.002 ** 3
+    assert f[2] == pytest.approx(fn, rel=1e-6)          # depth from the geometry (1e-6 rel.: 0.003 - 1e-6)
+    assert f[0] == pytest.approx(-min(2 * gamma_t * m_ij * 0.01, 0.5 * f[2]), rel=1e-12)
+    assert f[1] == 0.0

@@ -14,7 +14,8 @@ Per listed pair whose bounding spheres overlap:
   sphere's centre (a point core of crust = its radius): one point;
 * two spheres: analytic, one point.
 Every point goes through the shared law (dem_contact/apply.pxd) with levers from the centres of mass and
-weight 1/alpha (Grains3D law, Model B averaging on the points).
+weight 1/alpha: the Grains3D law (Model B averaging on the points) or, with `law` LAW_DESCANTES, Descantes'
+eq. 3 (dem_contact/law.pxd: no attraction, viscous friction capped by Coulomb, no spring, no history).
 
 History (keyed, only with a tangential spring ks > 0): one record per contact point: xi (XI_WIDTH values)
 then the point in the body frame of the list's owner i (unscaled, unrotated: R^T (p - x_i) / s_i). A new
@@ -33,8 +34,8 @@ from dem.contact._polytope cimport (Polytope, TopoTable, TopologyView, SatResult
                                     sat_penetration, contact_points, POLY_MAXP)
 from dem.shapes._support cimport ShapeRef, Kind, quat_to_rot, NPARAM
 from dem.shapes._table cimport ShapeView, TableView, body_ref, round_body
-from dem_contact.apply cimport Body, apply_pair
-from dem_contact.law cimport XI_WIDTH
+from dem_contact.apply cimport Body, apply_pair_law
+from dem_contact.law cimport XI_WIDTH, LAW_GRAINS3D, LAW_DESCANTES
 
 ctypedef cnp.int64_t i64
 
@@ -49,6 +50,7 @@ cdef double GJK_TOL = 1e-10
 
 cdef double POINT_PARAMS[NPARAM]   # a sphere of radius 0 (zero-initialised)
 
+LAWS = {"grains3d": LAW_GRAINS3D, "descantes": LAW_DESCANTES}
 STATS = ("contacts", "points", "max_overlap", "energy", "vertex_face", "edge_edge", "edge_face", "face_face",
          "sphere")
 
@@ -139,7 +141,7 @@ cdef inline i64 _match(const KeyedView* h, i64 k, const double* b, double tol2, 
 
 def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, const double[:, :, ::1] coeff,
             ShapeView shapes, TopologyView topo, double[::1] stats, KeyedBuffers hist, bint use_xi,
-            double ftol_rel, double dt, bint advance, i64 start):
+            double ftol_rel, double dt, bint advance, int law, i64 start):
     """Adds the contact forces and torques of list entries from `start` on; returns -1, or the entry to
     resume from when the history buffer is full (dem/_history.pxd). stats receives STATS (summed; the
     caller resets them once per step)."""
@@ -275,8 +277,8 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 for q in range(npt):
                     con[q].weight = weight
                     con[q].central = False
-                    stats[3] += apply_pair(&coeff[P.type[i], P.type[j], 0], &con[q], &BA, &BB, meff, reff,
-                                           recs[q], dt, advance, out)
+                    stats[3] += apply_pair_law(&coeff[P.type[i], P.type[j], 0], &con[q], &BA, &BB, meff, reff,
+                                               recs[q], dt, advance, out, law)
             if resume >= 0 or h.error:
                 break
     stats[2] = maxov

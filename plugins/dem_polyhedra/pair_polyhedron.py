@@ -16,25 +16,32 @@ FTOL = 1e-9      # contacting-feature tolerance, per unit of the two bounding ra
 
 
 class PairPolyhedronMultipoint(PairCoefficients, Pair):
-    """pair_style polyhedron/multipoint [ftol FTOL]
+    """pair_style polyhedron/multipoint [law grains3d|descantes] [ftol FTOL]
 
     pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [ks KS]
 
     Contacts of sharp polytopes (`box`, `cube`, `polyhedron`, `tetrahedron`, `pinacoid`: no rounding, no
     crust) and plain spheres, with as many contact points as the contact has (Descantes 2022 sec. 2):
     vertex/face and edge/edge 1, edge/face 2, face/face the corners of the overlap polygon (at most 16).
-    Depth and normal are exact (separating axes, dem/contact/_polytope.pyx); every point carries the
-    shared maximum overlap and weight 1/alpha (alpha the number of points) through the Grains3D law (as
-    `convex/gjk`; Model B averaging on the points), with the reduced mass of the pair and levers from the
-    centres of mass. A sphere touches a polytope at one point (GJK on the sharp body and the sphere's
-    centre), two spheres analytically (with rolling resistance mu_roll, as `pair_style sphere`).
+    Depth and normal are exact (separating axes, dem/contact/_polytope.pyx). A body's contacting feature
+    is its vertices within ftol (r_i + r_j) + delta of its deepest one along the normal (every vertex
+    inside the overlap slab; ftol default 1e-9). Every point carries the shared maximum overlap and weight
+    1/alpha (alpha the number of points) through the Grains3D law (as `convex/gjk`; Model B averaging on
+    the points), with the reduced mass of the pair and levers from the centres of mass. A sphere touches a
+    polytope at one point (GJK on the sharp body and the sphere's centre), two spheres analytically (with
+    rolling resistance mu_roll, as `pair_style sphere`).
 
-    With a tangential spring (ks > 0) every point keeps its own history, matched from step to step by
-    its position in the body frame of one of the two particles (not by index), so that it survives a
-    face/face contact turning edge/face and back. `ftol` (default 1e-9, relative to the two bounding
-    radii) is the distance under which vertices count as one contacting feature. Other shapes (curved
-    bodies, glued composites) are refused. Particles with a shape need `fix ID group nve/shape`; walls
-    touch polytopes at every vertex with `fix ... wall/plane ... point multipoint`.
+    `law descantes`: Descantes' eq. 3 at every point instead, F_n = max(0, kn delta - nu_n U_n) / alpha
+    (no attraction; nu_n from en as in the Grains3D law) and F_t = -min(nu_t |U_t|, mu F_n) t / alpha
+    (viscous, nu_t = 2 gamma_t m_ij, capped by Coulomb; no spring: ks is not used, no history). Walls keep
+    their own law (Grains3D) with `point multipoint`.
+
+    With a tangential spring (ks > 0, law grains3d) every point keeps its own history, matched from step
+    to step by its position in the body frame of the list's owner (not by index), so that it survives a
+    face/face contact turning edge/face and back (dem_polyhedra/_pair_polyhedron.pyx). Other shapes
+    (curved bodies, glued composites) are refused. Particles with a shape need `fix ID group nve/shape`;
+    walls touch polytopes at every vertex with `fix ... wall/plane ... point multipoint`. The shape table
+    has no topology yet: this style packs it from the table's rows at init.
 
     Example::
 
@@ -48,16 +55,25 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
     def __init__(self, sim, args):
         super().__init__(sim, args)
         self.ftol = FTOL
-        usage = "pair_style polyhedron/multipoint [ftol FTOL]"
-        if len(args) not in (0, 2) or (args and args[0] != "ftol"):
-            raise DemError(f"pair_style polyhedron/multipoint: unknown or incomplete arguments {args}; usage: {usage}")
-        if args:
-            try:
-                self.ftol = float(args[1])
-            except ValueError:
-                raise DemError(f"pair_style polyhedron/multipoint: ftol must be a number, got '{args[1]}'") from None
-            if not 0 <= self.ftol < 1e-2:
-                raise DemError("pair_style polyhedron/multipoint: ftol must be in [0, 1e-2)")
+        self.law = "grains3d"
+        usage = "pair_style polyhedron/multipoint [law grains3d|descantes] [ftol FTOL]"
+        i = 0
+        while i < len(args):
+            if i + 1 >= len(args) or args[i] not in ("ftol", "law"):
+                raise DemError(f"pair_style polyhedron/multipoint: unknown or incomplete argument '{args[i]}'; "
+                               f"usage: {usage}")
+            if args[i] == "law":
+                if args[i + 1] not in _pair_polyhedron.LAWS:
+                    raise DemError(f"pair_style polyhedron/multipoint: law is grains3d or descantes, got '{args[i + 1]}'")
+                self.law = args[i + 1]
+            else:
+                try:
+                    self.ftol = float(args[i + 1])
+                except ValueError:
+                    raise DemError(f"pair_style polyhedron/multipoint: ftol must be a number, got '{args[i + 1]}'") from None
+                if not 0 <= self.ftol < 1e-2:
+                    raise DemError("pair_style polyhedron/multipoint: ftol must be in [0, 1e-2)")
+            i += 2
         self.init_coefficients()
         self.history = None
         self.use_xi = False
@@ -71,7 +87,7 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         return True
 
     def init(self):
-        self.use_xi = self.check_coefficients()
+        self.use_xi = self.check_coefficients() and self.law == "grains3d"
         sim = self.sim
         atom = sim.atom
         self.shape_view = shape_command.shape_view(sim)
@@ -101,7 +117,7 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         nb = self.sim.neighbor
         return lambda start: _pair_polyhedron.compute(
             view, nb.offsets, nb.neigh, self.table, self.shape_view, self.topology, st, buffers, use_xi,
-            self.ftol, self.sim.update.dt, advance, start)
+            self.ftol, self.sim.update.dt, advance, _pair_polyhedron.LAWS[self.law], start)
 
     def compute(self, advance=True):
         sim = self.sim
