@@ -332,3 +332,29 @@ def test_descantes_law_viscous_friction_capped_by_coulomb(gamma_t):
     assert f[2] == pytest.approx(fn, rel=1e-6)          # depth from the geometry (1e-6 rel.: 0.003 - 1e-6)
     assert f[0] == pytest.approx(-min(2 * gamma_t * m_ij * 0.01, 0.5 * f[2]), rel=1e-12)
     assert f[1] == 0.0
+
+
+def test_sphere_on_cube_and_on_sphere():
+    """Plain spheres mix in: a sphere resting on a fixed cube touches at one point (GJK on the sharp cube and
+    the sphere's centre), a sphere on a fixed sphere analytically; each settles at the overlap of its weight,
+    m g / kn, to 1e-3 of it, and never spins (the point is under the centre)."""
+    sim = _run(HEAD.format(shape="cube 0.002") + """
+create_atoms 1 single 0 0 0.001 shape c density 1250
+create_atoms 1 single 0 0 0.0025 radius 0.0005 density 1250
+create_atoms 1 single 0.01 0 0.001 radius 0.001 density 1250
+create_atoms 1 single 0.01 0 0.0025 radius 0.0005 density 1250
+group top id 2 4
+pair_style polyhedron/multipoint
+pair_coeff * * kn 1e5 en 0.5 mu 0.5 ks 2e4
+fix integrate top nve/shape
+fix gravity top gravity 9.81 vector 0 0 -1
+timestep 2e-6
+""", 20000)
+    assert sim.pair.ncontacts == 2 and sim.pair.npoints == 2
+    order = np.argsort(sim.atom.local("tag"))
+    x, w = sim.atom.local("x")[order], sim.atom.local("omega")[order]
+    m = float(sim.atom.local("rmass")[order][1])
+    g = m * 9.81 / 1e5
+    assert x[1, 2] == pytest.approx(0.0025 - g, abs=1e-3 * g)
+    assert x[3, 2] == pytest.approx(0.0025 - g, abs=1e-3 * g)
+    assert np.abs(w).max() < 1e-12
