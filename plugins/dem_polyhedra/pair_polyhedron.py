@@ -12,6 +12,7 @@ from dem_contact.pair_coeffs import PairCoefficients
 
 from . import _pair_polyhedron
 
+TYPES = ("vertex_face", "edge_edge", "edge_face", "face_face", "sphere")   # "sphere": a pair with a sphere
 FTOL = 1e-9      # contacting-feature tolerance, per unit of the two bounding radii (dem.contact.polytope)
 
 
@@ -80,6 +81,7 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         self.stats = dict.fromkeys(_pair_polyhedron.STATS, 0.0)     # sums over the run
         self.step_stats = np.zeros(len(_pair_polyhedron.STATS))
         self.npoints = 0
+        self.contact_types = dict.fromkeys(TYPES, 0)
 
     @property
     def multipoint_average(self):
@@ -134,6 +136,7 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         self.npoints = int(s["points"])
         self.max_overlap = float(s["max_overlap"])
         self.energy = float(s["energy"])
+        self.contact_types = {k: int(s[k]) for k in TYPES}     # pairs of each type at the last compute
         if advance:
             for key, v in s.items():
                 if key != "max_overlap":
