@@ -429,3 +429,63 @@ def test_history_through_rebuilds():
     assert b.neighbor.nbuilds > 3000 and a.neighbor.nbuilds < 100
     assert a.pair.ncontacts == 1 and len(types) >= 2, types       # the contact type changed on the way
     assert np.array_equal(fa, fb) and np.array_equal(ta, tb)
+
+
+def test_two_ranks_match_serial(tmp_path):
+    """12 columns of 3 cubes (1 nm into each other, 0.1 um apart sideways, each turned by up to 1e-7 rad and
+    sliding at up to 0.1 mm/s: 4 points per face pair, springs at every point) on a multipoint floor, 200
+    steps, on 1 and 2 ranks (the box cut along z through the contacts of the 2nd and 3rd layers):
+    contacts equal at every step, state equal to round-off (bounds of tests/test_mpi.py: 1e-9 of a size,
+    of the largest velocity; measured: positions, velocities and spins bitwise equal here)."""
+    import sys
+    sys.path.insert(0, str(__import__("pathlib").Path(__file__).parent))
+    import test_mpi
+    if test_mpi.MPIEXEC is None:
+        pytest.skip("mpiexec not found")
+    a = 0.002
+    rng = np.random.default_rng(3)
+    lines = []
+    for i in range(4):
+        for j in range(3):
+            for k in range(3):
+                ax = rng.normal(size=3)
+                ax /= np.linalg.norm(ax)
+                th = rng.uniform(0, 1e-7)
+                q = " ".join(repr(float(c)) for c in [np.cos(th / 2), *(np.sin(th / 2) * ax)])
+                x = [(i + 0.5) * (a + 1e-7), (j + 0.5) * (a + 1e-7), (k + 0.5) * (a - 1e-9)]
+                v = " ".join(repr(float(c)) for c in rng.uniform(-1e-4, 1e-4, 2))
+                lines.append(f"create_atoms 1 single {x[0]!r} {x[1]!r} {x[2]!r} shape c density 1250 quat {q} "
+                             f"v {v} 0")
+    script = f"""units si
+boundary f f f
+{{processors}}
+region box block -0.001 0.009 -0.001 0.007 -0.001 0.01
+create_box 1 box
+shape c cube {a}
+""" + "\n".join(lines) + """
+pair_style polyhedron/multipoint
+pair_coeff * * kn 1e5 en 0.5 mu 0.5 ks 2e4
+fix integrate all nve/shape
+fix gravity all gravity 9.81 vector 0 0 -1
+fix floor all wall/plane zplane 0 NULL point multipoint
+timestep 2e-6
+thermo 1
+thermo_style custom step atoms contacts f_floor[contacts] ke
+thermo_modify format float %.17g
+dump d all h5 200 cubes.h5
+run 200
+"""
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    test_mpi.run_dem(tmp_path / "a", script.format(processors=""), 1, "log.1")
+    test_mpi.run_dem(tmp_path / "b", script.format(processors="processors 1 1 2"), 2, "log.2")
+    r1, r2 = test_mpi.thermo_rows(tmp_path / "a" / "log.1"), test_mpi.thermo_rows(tmp_path / "b" / "log.2")
+    assert len(r1) == len(r2) == 201
+    assert [r[:4] for r in r1] == [r[:4] for r in r2]
+    assert int(r1[-1][2]) > 20 and int(r1[-1][3]) == 48     # the columns in contact (some pairs bounce), on the floor
+    f1, f2 = test_mpi.frame(tmp_path / "a" / "cubes.h5", 200), test_mpi.frame(tmp_path / "b" / "cubes.h5", 200)
+    o1, o2 = np.argsort(f1["id"]), np.argsort(f2["id"])
+    assert np.abs(f1["position"][o1] - f2["position"][o2]).max() <= 1e-9 * a
+    vmax = np.abs(f1["velocity"]).max()
+    assert np.abs(f1["velocity"][o1] - f2["velocity"][o2]).max() <= 1e-9 * vmax
+    assert np.abs(f1["omega"][o1] - f2["omega"][o2]).max() <= 1e-9 * np.abs(f1["omega"]).max()
