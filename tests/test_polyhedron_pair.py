@@ -489,3 +489,32 @@ run 200
     vmax = np.abs(f1["velocity"]).max()
     assert np.abs(f1["velocity"][o1] - f2["velocity"][o2]).max() <= 1e-9 * vmax
     assert np.abs(f1["omega"][o1] - f2["omega"][o2]).max() <= 1e-9 * np.abs(f1["omega"]).max()
+
+
+def test_contact_type_census():
+    """A 3x3x3 block of cubes face to face, each turned by up to 20 mrad (corners up to 40 um deep): every
+    contact type occurs; the points are consistent with the types, 1 per vertex/face and edge/edge pair, 2
+    per edge/face pair, >= 3 per face/face pair (summed over 50 steps)."""
+    a = 0.002
+    rng = np.random.default_rng(11)
+    lines = []
+    for i in range(3):
+        for j in range(3):
+            for k in range(3):
+                ax = rng.normal(size=3)
+                ax /= np.linalg.norm(ax)
+                th = rng.uniform(0, 0.02)
+                q = " ".join(repr(float(c)) for c in [np.cos(th / 2), *(np.sin(th / 2) * ax)])
+                x = [(c + 0.5) * (a - 1e-7) for c in (i, j, k)]
+                lines.append(f"create_atoms 1 single {x[0]!r} {x[1]!r} {x[2]!r} shape c density 1250 quat {q}")
+    sim = _run(HEAD.format(shape=f"cube {a}") + "\n".join(lines) + """
+pair_style polyhedron/multipoint
+pair_coeff * * kn 1e5 en 0.5 mu 0.5 ks 2e4
+fix integrate all nve/shape
+timestep 2e-6
+""", 50)
+    s = sim.pair.stats
+    assert min(s["vertex_face"], s["edge_edge"], s["edge_face"], s["face_face"]) > 0, s
+    assert s["points"] == s["vertex_face"] + s["edge_edge"] + 2 * s["edge_face"] + s["face_face_points"]
+    assert s["face_face_points"] >= 3 * s["face_face"]
+    assert s["contacts"] == s["vertex_face"] + s["edge_edge"] + s["edge_face"] + s["face_face"]

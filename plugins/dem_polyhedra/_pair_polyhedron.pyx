@@ -31,7 +31,8 @@ from dem._particles cimport ParticleView, Particles
 from dem.contact.record cimport Contact
 from dem.contact._gjk cimport crust_contact, CONTACT_NONE, NFEAT
 from dem.contact._polytope cimport (Polytope, TopoTable, TopologyView, SatResult, PolyContact, polytope_ref,
-                                    sat_penetration, contact_points, POLY_MAXP)
+                                    sat_penetration, contact_points, POLY_MAXP,
+                                    PC_FACE_FACE)
 from dem.shapes._support cimport ShapeRef, Kind, quat_to_rot, NPARAM
 from dem.shapes._table cimport ShapeView, TableView, body_ref, round_body
 from dem_contact.apply cimport Body, apply_pair_law
@@ -52,7 +53,7 @@ cdef double POINT_PARAMS[NPARAM]   # a sphere of radius 0 (zero-initialised)
 
 LAWS = {"grains3d": LAW_GRAINS3D, "descantes": LAW_DESCANTES}
 STATS = ("contacts", "points", "max_overlap", "energy", "vertex_face", "edge_edge", "edge_face", "face_face",
-         "sphere")
+         "sphere", "face_face_points")
 
 
 cdef inline void _rot(const Particles* P, int i, double* R) noexcept nogil:
@@ -312,6 +313,8 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 stats[1] += npt
                 if typ > 0:
                     stats[3 + typ] += 1.0
+                    if typ == PC_FACE_FACE:
+                        stats[9] += npt
                 else:
                     stats[8] += 1.0
                 weight = 1.0 / npt

@@ -42,7 +42,9 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
     face/face contact turning edge/face and back (dem_polyhedra/_pair_polyhedron.pyx). Other shapes
     (curved bodies, glued composites) are refused. Particles with a shape need `fix ID group nve/shape`;
     walls touch polytopes at every vertex with `fix ... wall/plane ... point multipoint`. The shape table
-    has no topology yet: this style packs it from the table's rows at init.
+    has no topology yet: this style packs it from the table's rows at init. After each step (Python):
+    `ncontacts` (pairs), `npoints`, `contact_types` (pairs per type: vertex_face, edge_edge, edge_face,
+    face_face, sphere); `stats` sums them over the run, with `face_face_points`.
 
     Example::
 
