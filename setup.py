@@ -43,7 +43,7 @@ setup(
                             "dem-drum-analysis = dem.tools.drum_analysis:main",
                             "dem-convert-restart = dem.tools.convert_restart:main"],
         "dem": ["core = dem.builtin", "sphere = dem_sphere", "fixes = dem_fixes", "process = dem_process",
-                "convex = dem_convex", "walls = dem_walls", "glued = dem_glued"],
+                "convex = dem_convex", "walls = dem_walls", "glued = dem_glued", "polyhedra = dem_polyhedra"],
     },
     zip_safe=False,
 )

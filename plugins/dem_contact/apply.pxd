@@ -10,7 +10,7 @@ b: `v` is its velocity at the contact point and `w` its spin (for rolling resist
 Rolling resistance acts when reff > 0 (spheres: R_eff; Grains3D applies none to shaped bodies)."""
 from dem._math cimport cross3
 from dem.contact.record cimport Contact
-from dem_contact.law cimport hooke, rolling_torque
+from dem_contact.law cimport hooke, descantes, rolling_torque, LAW_DESCANTES
 
 
 cdef struct Body:
@@ -33,18 +33,26 @@ cdef inline double apply_pair(const double* c, const Contact* k, const Body* a, 
     """The law at contact k between bodies a and b (reduced mass meff, coefficient row c): adds the force to
     a and minus it to b, and the torques about both centres; out receives the force on a (0-2) and the
     rolling torque on a (3-5, zero if none). Returns the elastic energy (times the weight)."""
-    return _apply(c, k, a, b, meff, reff, xi, dt, advance, out, False)
+    return _apply(c, k, a, b, meff, reff, xi, dt, advance, out, False, 0)
+
+
+cdef inline double apply_pair_law(const double* c, const Contact* k, const Body* a, const Body* b, double meff,
+                                  double reff, double* xi, double dt, bint advance, double* out,
+                                  int law) noexcept nogil:
+    """apply_pair with the law `law` (law.pxd: LAW_GRAINS3D, i.e. apply_pair, or LAW_DESCANTES, which
+    has no history: xi is not read)."""
+    return _apply(c, k, a, b, meff, reff, xi, dt, advance, out, False, law)
 
 
 cdef inline double apply_wall(const double* c, const Contact* k, const Body* a, const Body* wall, double m,
                               double reff, double* xi, double dt, bint advance, double* out) noexcept nogil:
     """apply_pair against a wall (m_ij = m, a's mass): only a takes the force and the torque."""
-    return _apply(c, k, a, wall, m, reff, xi, dt, advance, out, True)
+    return _apply(c, k, a, wall, m, reff, xi, dt, advance, out, True, 0)
 
 
 cdef inline double _apply(const double* c, const Contact* k, const Body* a, const Body* b, double meff,
                           double reff, double* xi, double dt, bint advance, double* out,
-                          bint wall) noexcept nogil:
+                          bint wall, int law) noexcept nogil:
     cdef double vr[3]
     cdef double ua[3]
     cdef double ub[3]
@@ -86,7 +94,10 @@ cdef inline double _apply(const double* c, const Contact* k, const Body* a, cons
             _point_velocity(b, lj, ub)
         for d in range(3):
             vr[d] = ua[d] - ub[d]
-    energy = hooke(c, k.delta, n, vr, meff, xi, dt, advance, fn, ft)
+    if law == LAW_DESCANTES:
+        energy = descantes(c, k.delta, n, vr, meff, fn, ft)
+    else:
+        energy = hooke(c, k.delta, n, vr, meff, xi, dt, advance, fn, ft)
     if s != 1.0:
         energy *= s
         for d in range(3):

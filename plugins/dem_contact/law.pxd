@@ -66,6 +66,44 @@ cdef inline double hooke(const double* c, double delta, const double* n, const d
     return 0.5 * kn * delta * delta
 
 
+cdef enum:                 # which law apply_pair_law uses (a constant at each call site)
+    LAW_GRAINS3D = 0       # hooke above
+    LAW_DESCANTES = 1      # descantes below
+
+
+cdef inline double descantes(const double* c, double delta, const double* n, const double* vr, double meff,
+                             double* fn, double* ft) noexcept nogil:
+    """Descantes 2022 eq. 3 at one contact point (the caller's weight 1/alpha divides both forces):
+
+        F_n = max(0, kn delta - nu_n U_n) n,          nu_n = 2 beta sqrt(kn m_ij)  (as hooke, from en)
+        F_t = -min(nu_t |U_t|, mu |F_n|) t,           nu_t = 2 gamma_t m_ij,  t = U_t / |U_t|
+
+    no attraction (a separating pair whose dashpot exceeds the spring feels no force) and no tangential
+    spring: viscous friction capped by Coulomb (no history). Returns the elastic energy 0.5 kn delta^2."""
+    cdef double kn = c[C_KN], mu = c[C_MU]
+    cdef double vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2]
+    cdef double fnmag = kn * delta - 2.0 * c[C_BETA] * sqrt(kn * meff) * vn
+    cdef double vt[3]
+    cdef double ut, scale, cap
+    cdef int d
+    if fnmag < 0.0:
+        fnmag = 0.0
+    for d in range(3):
+        fn[d] = fnmag * n[d]
+        vt[d] = vr[d] - vn * n[d]
+        ft[d] = 0.0
+    ut = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2])
+    if mu == 0.0 or ut == 0.0:
+        return 0.5 * kn * delta * delta
+    scale = 2.0 * c[C_GAMMA_T] * meff           # nu_t
+    cap = mu * fnmag
+    if scale * ut > cap:
+        scale = cap / ut
+    for d in range(3):
+        ft[d] = -scale * vt[d]
+    return 0.5 * kn * delta * delta
+
+
 cdef inline void forget(double* xi) noexcept nogil:
     """A contact that ended forgets its tangential history (written only when set: saves bandwidth)."""
     if xi[0] != 0.0 or xi[1] != 0.0 or xi[2] != 0.0:

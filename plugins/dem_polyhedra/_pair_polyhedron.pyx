@@ -1,0 +1,340 @@
+# cython: language_level=3, boundscheck=False, wraparound=False, cdivision=True, initializedcheck=False
+"""Contacts of sharp polytopes (box, cube, polyhedron, tetrahedron, pinacoid: no crust) and plain spheres
+with as many contact points as the contact geometry has (Descantes 2022 sec. 2).
+
+Per listed pair whose bounding spheres overlap (and, two polytopes, whose bounding boxes do: 15 axes):
+* two polytopes: sat_penetration then contact_points (dem/contact/_polytope.pyx: exact separating-axis
+  depth and normal, the contacting features clipped on the contact plane): alpha = 1 (vertex/face,
+  edge/edge), 2 (edge/face) or >= 3 (face/face) points, all with the shared maximum overlap. A body's
+  contacting feature is its vertices within ftol = ftol_rel (r_i + r_j) + delta of its deepest vertex along
+  the normal: every vertex inside the overlap slab (as a wall's `point multipoint` takes every vertex
+  beyond the wall), so a face tilted by less than delta / its size still touches with all its corners,
+  and the point set does not flip between 1, 2 and 4 points from round-off;
+* a sphere and a polytope: crust_contact (dem/contact/_gjk.pyx) of the sharp body (crust 0) and the
+  sphere's centre (a point core of crust = its radius): one point;
+* two spheres: analytic, one point.
+Every point goes through the shared law (dem_contact/apply.pxd) with levers from the centres of mass and
+weight 1/alpha: the Grains3D law (Model B averaging on the points) or, with `law` LAW_DESCANTES, Descantes'
+eq. 3 (dem_contact/law.pxd: no attraction, viscous friction capped by Coulomb, no spring, no history).
+
+History (keyed, only with a tangential spring ks > 0): one record per contact point: xi (XI_WIDTH values)
+then the point in the body frame of the list's owner i (unscaled, unrotated: R^T (p - x_i) / s_i). A new
+point takes the record of the nearest old point of the pair within MATCH times the row's bounding radius
+(each old record at most once, new points in their canonical order, ties to the lowest old row), else a
+fresh key (1 + the largest key of the pair). So a face/face contact that becomes edge/face keeps the
+springs of the two corners that remain, and back. Deterministic: no hash, no order but the canonical one."""
+cimport numpy as cnp
+from libc.math cimport sqrt
+import numpy as np
+from dem._history cimport KeyedBuffers, KeyedView, keyed_append, keyed_owner, keyed_reserve
+from dem._particles cimport ParticleView, Particles
+from dem.contact.record cimport Contact
+from dem.contact._gjk cimport crust_contact, CONTACT_NONE, NFEAT
+from dem.contact._polytope cimport (Polytope, TopoTable, TopologyView, SatResult, PolyContact, polytope_ref,
+                                    sat_penetration, contact_points, POLY_MAXP,
+                                    PC_FACE_FACE)
+from dem.shapes._support cimport ShapeRef, Kind, quat_to_rot, NPARAM
+from dem.shapes._table cimport ShapeView, TableView, body_ref, round_body
+from dem_contact.apply cimport Body, apply_pair_law
+from dem_contact.law cimport XI_WIDTH, LAW_GRAINS3D, LAW_DESCANTES
+
+ctypedef cnp.int64_t i64
+
+cdef enum:
+    PT = XI_WIDTH                  # record slots: xi, then the body-frame point (3)
+    NREC = PT + 3
+RECORD = NREC
+MAXP = POLY_MAXP
+cdef double MATCH = 0.25           # history match radius, times the bounding radius of the owner's row
+MATCH_RADIUS = MATCH
+cdef double GJK_TOL = 1e-10
+
+cdef double POINT_PARAMS[NPARAM]   # a sphere of radius 0 (zero-initialised)
+
+LAWS = {"grains3d": LAW_GRAINS3D, "descantes": LAW_DESCANTES}
+STATS = ("contacts", "points", "max_overlap", "energy", "vertex_face", "edge_edge", "edge_face", "face_face",
+         "sphere", "face_face_points")
+
+
+cdef inline void _rot(const Particles* P, int i, double* R) noexcept nogil:
+    quat_to_rot(&P.quat[4 * i], R)
+
+
+cdef inline int _sphere_poly(const Particles* P, const TableView* T, int i, int j, bint i_round,
+                             Contact* con) noexcept nogil:
+    """One contact of a sphere and a sharp polytope (either order): 1, or 0 when apart."""
+    cdef ShapeRef SA, SB
+    cdef double Ra[9]
+    cdef double Rb[9]
+    cdef double g[3]
+    cdef double feat[NFEAT]
+    cdef double ca, cb, s
+    cdef int k, code
+    for k in range(NFEAT):
+        feat[k] = 0.0
+    if i_round:
+        SA.kind = Kind.SPHERE
+        SA.params = POINT_PARAMS
+        SA.nverts = 0
+        SA.verts = NULL
+        SA.corners = NULL
+        for k in range(9):
+            Ra[k] = 0.0
+        Ra[0] = Ra[4] = Ra[8] = 1.0
+        ca = P.radius[i]
+        body_ref(T, P.shape[j], &SB)
+        _rot(P, j, Rb)
+        s = P.radius[j] / T.radius[P.shape[j]]
+        for k in range(9):
+            Rb[k] *= s
+        cb = 0.0
+    else:
+        body_ref(T, P.shape[i], &SA)
+        _rot(P, i, Ra)
+        s = P.radius[i] / T.radius[P.shape[i]]
+        for k in range(9):
+            Ra[k] *= s
+        ca = 0.0
+        SB.kind = Kind.SPHERE
+        SB.params = POINT_PARAMS
+        SB.nverts = 0
+        SB.verts = NULL
+        SB.corners = NULL
+        for k in range(9):
+            Rb[k] = 0.0
+        Rb[0] = Rb[4] = Rb[8] = 1.0
+        cb = P.radius[j]
+    for k in range(3):
+        g[k] = P.x[3 * i + k] - P.x[3 * j + k]
+    if g[0] == 0.0 and g[1] == 0.0 and g[2] == 0.0:
+        g[2] = 1.0
+    code = crust_contact(&SA, ca, Ra, &P.x[3 * i], &SB, cb, Rb, &P.x[3 * j], GJK_TOL, g, feat,
+                         &con.delta, con.n, con.p)
+    if code == CONTACT_NONE:
+        return 0
+    return 1
+
+
+cdef inline bint _boxes_apart(const double* Ra, const double* xa, const double* ha, double sa,
+                              const double* Rb, const double* xb, const double* hb, double sb) noexcept nogil:
+    """Whether the bounding boxes (half sides h at scale 1, on the body axes; pure rotations R row-major body
+    -> world, scales s) of two posed bodies are apart: the 15 separating axes of two boxes (as
+    dem_glued's cull), with a 1e-12 slack on parallel edges so that touching boxes are never apart. A cheap
+    cull before the exact separating-axis test of the polytopes (diagonal neighbours of a cube lattice)."""
+    cdef double A[3][3]
+    cdef double B[3][3]
+    cdef double C[3][3]
+    cdef double aC[3][3]
+    cdef double a[3]
+    cdef double b[3]
+    cdef double t[3]
+    cdef double T[3]
+    cdef double ra, rb, u
+    cdef int i, j, d
+    for i in range(3):
+        a[i] = ha[i] * sa
+        b[i] = hb[i] * sb
+        for d in range(3):
+            A[i][d] = Ra[3 * d + i]
+            B[i][d] = Rb[3 * d + i]
+    for d in range(3):
+        T[d] = xb[d] - xa[d]
+    for i in range(3):
+        t[i] = A[i][0] * T[0] + A[i][1] * T[1] + A[i][2] * T[2]
+        for j in range(3):
+            C[i][j] = A[i][0] * B[j][0] + A[i][1] * B[j][1] + A[i][2] * B[j][2]
+            aC[i][j] = (C[i][j] if C[i][j] >= 0.0 else -C[i][j]) + 1e-12
+    for i in range(3):
+        u = t[i] if t[i] >= 0.0 else -t[i]
+        if u > a[i] + b[0] * aC[i][0] + b[1] * aC[i][1] + b[2] * aC[i][2]:
+            return True
+    for j in range(3):
+        u = t[0] * C[0][j] + t[1] * C[1][j] + t[2] * C[2][j]
+        u = u if u >= 0.0 else -u
+        if u > b[j] + a[0] * aC[0][j] + a[1] * aC[1][j] + a[2] * aC[2][j]:
+            return True
+    for i in range(3):
+        for j in range(3):
+            u = t[(i + 2) % 3] * C[(i + 1) % 3][j] - t[(i + 1) % 3] * C[(i + 2) % 3][j]
+            u = u if u >= 0.0 else -u
+            ra = a[(i + 1) % 3] * aC[(i + 2) % 3][j] + a[(i + 2) % 3] * aC[(i + 1) % 3][j]
+            rb = b[(j + 1) % 3] * aC[i][(j + 2) % 3] + b[(j + 2) % 3] * aC[i][(j + 1) % 3]
+            if u > ra + rb:
+                return True
+    return False
+
+
+cdef inline i64 _match(const KeyedView* h, i64 k, const double* b, double tol2, bint* taken, i64* fresh) noexcept nogil:
+    """The key of the nearest untaken old record of entry k within sqrt(tol2) of body-frame point b, or a
+    fresh key."""
+    cdef i64 r, best = -1, n0 = h.offsets[k]
+    cdef double d2, dbest = tol2, e
+    cdef const double* v
+    cdef int d
+    for r in range(n0, h.offsets[k + 1]):
+        if taken[r - n0]:
+            continue
+        v = h.values + r * h.width + PT
+        d2 = 0.0
+        for d in range(3):
+            e = v[d] - b[d]
+            d2 += e * e
+        if d2 < dbest:
+            dbest = d2
+            best = r
+    if best >= 0:
+        taken[best - n0] = True
+        return h.keys[best]
+    fresh[0] += 1
+    return fresh[0]
+
+
+def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, const double[:, :, ::1] coeff,
+            ShapeView shapes, TopologyView topo, double[::1] stats, KeyedBuffers hist, bint use_xi,
+            double ftol_rel, double dt, bint advance, int law, i64 start):
+    """Adds the contact forces and torques of list entries from `start` on; returns -1, or the entry to
+    resume from when the history buffer is full (dem/_history.pxd). stats receives STATS (summed; the
+    caller resets them once per step)."""
+    cdef Particles particles = view.p
+    cdef const Particles* P = &particles
+    cdef TableView table = shapes.t
+    cdef const TableView* T = &table
+    cdef const TopoTable* TT = &topo.t
+    cdef KeyedView* h = &hist.view
+    cdef int i, j, d, q, npt, si, sj, typ
+    cdef i64 k, r, resume = -1, fresh
+    cdef double dx[3]
+    cdef double Ri[9]
+    cdef double Rj[9]
+    cdef double bpt[3]
+    cdef double out[6]
+    cdef double r2, rsum, dist, meff, weight, si_scale, sj_scale, reff, tol2
+    cdef double maxov = stats[2]
+    cdef bint ri, rj
+    cdef bint taken[4 * POLY_MAXP]
+    cdef Polytope A, B
+    cdef SatResult sat
+    cdef PolyContact pc
+    cdef Contact con[POLY_MAXP]
+    cdef double* recs[POLY_MAXP]
+    cdef Body BA, BB
+    if P.nlocal == 0 or start >= offsets[P.nlocal]:
+        return -1
+    with nogil:
+        for i in range(keyed_owner(&offsets[0], P.nlocal, start), P.nlocal):
+            for k in range(max(offsets[i], start), offsets[i + 1]):
+                j = neigh[k]
+                for d in range(3):
+                    dx[d] = P.x[3 * i + d] - P.x[3 * j + d]
+                r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]
+                rsum = P.radius[i] + P.radius[j]
+                if r2 >= rsum * rsum:
+                    continue                   # no record: the pair's history is forgotten
+                si = P.shape[i]
+                sj = P.shape[j]
+                ri = round_body(T, si)
+                rj = round_body(T, sj)
+                reff = 0.0
+                typ = -1
+                si_scale = P.radius[i] if ri else P.radius[i] / T.radius[si]
+                _rot(P, i, Ri)
+                if ri and rj:                  # two spheres: analytic
+                    dist = sqrt(r2)
+                    if dist == 0.0:
+                        continue
+                    npt = 1
+                    con[0].delta = rsum - dist
+                    for d in range(3):
+                        con[0].n[d] = dx[d] / dist
+                        con[0].p[d] = P.x[3 * i + d] - (P.radius[i] - 0.5 * con[0].delta) * con[0].n[d]
+                    reff = P.radius[i] * P.radius[j] / rsum
+                elif ri or rj:
+                    npt = _sphere_poly(P, T, i, j, ri, &con[0])
+                else:
+                    sj_scale = P.radius[j] / T.radius[sj]
+                    _rot(P, j, Rj)
+                    if _boxes_apart(Ri, &P.x[3 * i], &T.half[3 * si], si_scale,
+                                    Rj, &P.x[3 * j], &T.half[3 * sj], sj_scale):
+                        continue
+                    polytope_ref(TT, si, &A)
+                    polytope_ref(TT, sj, &B)
+                    # contacting features: the vertices within ftol of the deepest one along the normal,
+                    # ftol = ftol_rel L + the overlap, i.e. every vertex inside the overlap slab
+                    npt = sat_penetration(&A, Ri, si_scale, &P.x[3 * i], &B, Rj, sj_scale, &P.x[3 * j], &sat)
+                    if npt:
+                        npt = contact_points(&A, Ri, si_scale, &P.x[3 * i], &B, Rj, sj_scale, &P.x[3 * j],
+                                             &sat, ftol_rel * rsum + sat.depth, &pc)
+                    typ = pc.type
+                    for q in range(npt):
+                        con[q].delta = pc.depth
+                        for d in range(3):
+                            con[q].n[d] = pc.n[d]
+                            con[q].p[d] = pc.p[3 * q + d]
+                if npt == 0:
+                    continue
+                if use_xi:
+                    if not keyed_reserve(h, k, npt):
+                        resume = k
+                        break
+                    # body-frame points of the owner i and their keys (module doc)
+                    fresh = 0
+                    for r in range(h.offsets[k], h.offsets[k + 1]):
+                        if h.keys[r] > fresh:
+                            fresh = h.keys[r]
+                        if r - h.offsets[k] < 4 * POLY_MAXP:
+                            taken[r - h.offsets[k]] = False
+                    tol2 = MATCH * (T.radius[si] if not ri else 1.0)
+                    tol2 = tol2 * tol2
+                    for q in range(npt):
+                        for d in range(3):
+                            dx[d] = con[q].p[d] - P.x[3 * i + d]
+                        for d in range(3):
+                            bpt[d] = (Ri[d] * dx[0] + Ri[3 + d] * dx[1] + Ri[6 + d] * dx[2]) / si_scale
+                        if h.offsets[k + 1] - h.offsets[k] <= 4 * POLY_MAXP:
+                            con[q].key = _match(h, k, bpt, tol2, taken, &fresh)
+                        else:
+                            fresh += 1
+                            con[q].key = fresh
+                        recs[q] = keyed_append(h, k, con[q].key)
+                        if recs[q] == NULL:
+                            break
+                        for d in range(3):
+                            recs[q][PT + d] = bpt[d]
+                    if h.error:
+                        break
+                else:
+                    for q in range(npt):
+                        con[q].key = q
+                        recs[q] = NULL
+                dist = 2.0 * (P.radius[i] if P.radius[i] < P.radius[j] else P.radius[j])
+                if con[0].delta > maxov * dist:
+                    maxov = con[0].delta / dist
+                stats[0] += 1.0
+                stats[1] += npt
+                if typ > 0:
+                    stats[3 + typ] += 1.0
+                    if typ == PC_FACE_FACE:
+                        stats[9] += npt
+                else:
+                    stats[8] += 1.0
+                weight = 1.0 / npt
+                meff = P.rmass[i] * P.rmass[j] / (P.rmass[i] + P.rmass[j])
+                BA.x = &P.x[3 * i]
+                BA.v = &P.v[3 * i]
+                BA.w = &P.omega[3 * i]
+                BA.f = &P.f[3 * i]
+                BA.t = &P.torque[3 * i]
+                BB.x = &P.x[3 * j]
+                BB.v = &P.v[3 * j]
+                BB.w = &P.omega[3 * j]
+                BB.f = &P.f[3 * j]
+                BB.t = &P.torque[3 * j]
+                for q in range(npt):
+                    con[q].weight = weight
+                    con[q].central = False
+                    stats[3] += apply_pair_law(&coeff[P.type[i], P.type[j], 0], &con[q], &BA, &BB, meff, reff,
+                                               recs[q], dt, advance, out, law)
+            if resume >= 0 or h.error:
+                break
+    stats[2] = maxov
+    return resume

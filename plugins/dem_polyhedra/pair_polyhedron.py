@@ -1,0 +1,149 @@
+"""pair_style polyhedron/multipoint: sharp polyhedra with multipoint contacts, and plain spheres."""
+import numpy as np
+
+from dem import shape_command
+from dem._particles import ParticleView
+from dem.contact import _polytope
+from dem.errors import DemError
+from dem.history import KeyedHistory
+from dem.pair import Pair
+from dem.shapes.topology import pack_topology
+from dem_contact.pair_coeffs import PairCoefficients
+
+from . import _pair_polyhedron
+
+TYPES = ("vertex_face", "edge_edge", "edge_face", "face_face", "sphere")   # "sphere": a pair with a sphere
+FTOL = 1e-9      # contacting-feature tolerance, per unit of the two bounding radii (dem.contact.polytope)
+
+
+class PairPolyhedronMultipoint(PairCoefficients, Pair):
+    """pair_style polyhedron/multipoint [law grains3d|descantes] [ftol FTOL]
+
+    pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [ks KS]
+
+    Contacts of sharp polytopes (`box`, `cube`, `polyhedron`, `tetrahedron`, `pinacoid`: no rounding, no
+    crust) and plain spheres, with as many contact points as the contact has (Descantes 2022 sec. 2):
+    vertex/face and edge/edge 1, edge/face 2, face/face the corners of the overlap polygon (at most 16).
+    Depth and normal are exact (separating axes, dem/contact/_polytope.pyx). A body's contacting feature
+    is its vertices within ftol (r_i + r_j) + delta of its deepest one along the normal (every vertex
+    inside the overlap slab; ftol default 1e-9). Every point carries the shared maximum overlap and weight
+    1/alpha (alpha the number of points) through the Grains3D law (as `convex/gjk`; Model B averaging on
+    the points), with the reduced mass of the pair and levers from the centres of mass. A sphere touches a
+    polytope at one point (GJK on the sharp body and the sphere's centre), two spheres analytically (with
+    rolling resistance mu_roll, as `pair_style sphere`).
+
+    `law descantes`: Descantes' eq. 3 at every point instead, F_n = max(0, kn delta - nu_n U_n) / alpha
+    (no attraction; nu_n from en as in the Grains3D law) and F_t = -min(nu_t |U_t|, mu F_n) t / alpha
+    (viscous, nu_t = 2 gamma_t m_ij, capped by Coulomb; no spring: ks is not used, no history). Walls keep
+    their own law (Grains3D) with `point multipoint`.
+
+    With a tangential spring (ks > 0, law grains3d) every point keeps its own history, matched from step
+    to step by its position in the body frame of the list's owner (not by index), so that it survives a
+    face/face contact turning edge/face and back (dem_polyhedra/_pair_polyhedron.pyx). Other shapes
+    (curved bodies, glued composites) are refused. Particles with a shape need `fix ID group nve/shape`;
+    walls touch polytopes at every vertex with `fix ... wall/plane ... point multipoint`. The shape table
+    has no topology yet: this style packs it from the table's rows at init. After each step (Python):
+    `ncontacts` (pairs), `npoints`, `contact_types` (pairs per type: vertex_face, edge_edge, edge_face,
+    face_face, sphere); `stats` sums them over the run, with `face_face_points`.
+
+    Example::
+
+        shape c cube 0.002
+        pair_style polyhedron/multipoint
+        pair_coeff * * kn 1e5 en 0.5 mu 0.5 ks 2e4
+    """
+
+    style = "polyhedron/multipoint"
+
+    def __init__(self, sim, args):
+        super().__init__(sim, args)
+        self.ftol = FTOL
+        self.law = "grains3d"
+        usage = "pair_style polyhedron/multipoint [law grains3d|descantes] [ftol FTOL]"
+        i = 0
+        while i < len(args):
+            if i + 1 >= len(args) or args[i] not in ("ftol", "law"):
+                raise DemError(f"pair_style polyhedron/multipoint: unknown or incomplete argument '{args[i]}'; "
+                               f"usage: {usage}")
+            if args[i] == "law":
+                if args[i + 1] not in _pair_polyhedron.LAWS:
+                    raise DemError(f"pair_style polyhedron/multipoint: law is grains3d or descantes, got '{args[i + 1]}'")
+                self.law = args[i + 1]
+            else:
+                try:
+                    self.ftol = float(args[i + 1])
+                except ValueError:
+                    raise DemError(f"pair_style polyhedron/multipoint: ftol must be a number, got '{args[i + 1]}'") from None
+                if not 0 <= self.ftol < 1e-2:
+                    raise DemError("pair_style polyhedron/multipoint: ftol must be in [0, 1e-2)")
+            i += 2
+        self.init_coefficients()
+        self.history = None
+        self.use_xi = False
+        self.stats = dict.fromkeys(_pair_polyhedron.STATS, 0.0)     # sums over the run
+        self.step_stats = np.zeros(len(_pair_polyhedron.STATS))
+        self.npoints = 0
+        self.contact_types = dict.fromkeys(TYPES, 0)
+
+    @property
+    def multipoint_average(self):
+        """Walls weigh the points of a particle by 1/N (as this pair style)."""
+        return True
+
+    def init(self):
+        self.use_xi = self.check_coefficients() and self.law == "grains3d"
+        sim = self.sim
+        atom = sim.atom
+        self.shape_view = shape_command.shape_view(sim)
+        rows = sim.shapes.rows
+        # the shape table has no topology yet: packed here, row for row (dem/shapes/topology.py)
+        packed = pack_topology(rows)
+        self.topology = _polytope.TopologyView(packed)
+        used = np.unique(atom.data["shape"][:atom.nlocal])
+        sphere = self.shape_view.arrays["is_sphere"] if "is_sphere" in self.shape_view.arrays else None
+        for s in used:
+            if s < 0:
+                continue
+            shp = rows[s]
+            if packed["poly"][s] or (sphere is not None and sphere[s]):
+                continue
+            raise DemError(f"pair_style polyhedron/multipoint: shape '{getattr(shp, 'name', s)}' is neither a "
+                           "sharp polytope (box, cube, polyhedron, tetrahedron, pinacoid) nor a sphere")
+        if self.use_xi and self.history is None:
+            self.history = KeyedHistory(sim, "pair_polyhedron", _pair_polyhedron.RECORD)
+            sim.neighbor.histories.append(self.history)
+        shaped = sim.comm.any(bool(np.any(atom.data["shape"][:atom.nlocal] >= 0)))
+        if shaped and not any(f.style == "nve/shape" for f in sim.modify.integrators):
+            sim.warning("shaped particles are integrated without fix nve/shape: their rotation is that of "
+                        "a sphere (wrong for non-spherical bodies)")
+
+    def _kernel(self, view, st, buffers, use_xi, advance):
+        nb = self.sim.neighbor
+        return lambda start: _pair_polyhedron.compute(
+            view, nb.offsets, nb.neigh, self.table, self.shape_view, self.topology, st, buffers, use_xi,
+            self.ftol, self.sim.update.dt, advance, _pair_polyhedron.LAWS[self.law], start)
+
+    def compute(self, advance=True):
+        sim = self.sim
+        view = ParticleView(sim.atom)
+        st = self.step_stats
+        st[:] = 0.0
+        if self.use_xi:
+            self.history.step(self._kernel(view, st, self.history.buffers, True, advance), advance)
+        else:
+            if self._kernel(view, st, _EMPTY, False, advance)(0) != -1:
+                raise RuntimeError("pair polyhedron/multipoint: kernel stopped without a history")
+        s = dict(zip(_pair_polyhedron.STATS, st))
+        self.ncontacts = int(s["contacts"])
+        self.npoints = int(s["points"])
+        self.max_overlap = float(s["max_overlap"])
+        self.energy = float(s["energy"])
+        self.contact_types = {k: int(s[k]) for k in TYPES}     # pairs of each type at the last compute
+        if advance:
+            for key, v in s.items():
+                if key != "max_overlap":
+                    self.stats[key] += v
+
+
+from dem import _history  # noqa: E402
+_EMPTY = _history.KeyedBuffers(_pair_polyhedron.RECORD)
