@@ -25,6 +25,7 @@ from dem.contact._gjk cimport crust_contact, CONTACT_NONE, CONTACT_CRUST, NFEAT
 from dem.shapes._support cimport ShapeRef, Kind, quat_to_rot, NPARAM
 from dem.shapes._table cimport (ShapeView, TableView, core_ref, round_body, ncomponents, component_row,
                                 pose_component)
+from dem.contact._bounds cimport boxes_apart
 from dem_contact.apply cimport Body, apply_pair
 from dem_contact.law cimport XI_WIDTH, forget
 
@@ -112,51 +113,6 @@ def poses(ParticleView view, ShapeView shapes, GluedWork work):
         cstart[P.nall] = n
 
 
-cdef inline bint _boxes_apart(const double* Ra, const double* xa, const double* ha, double sa,
-                              const double* Rb, const double* xb, const double* hb, double sb) noexcept nogil:
-    """Whether the bounding boxes of two posed pieces are apart (separating axis test, 15 axes: the faces of
-    each and the cross products of their edges). R: scaled rotation (row-major, body -> world) of scale s,
-    h: half sides at scale 1. Parallel edges get a 1e-12 slack, so touching boxes are never called apart."""
-    cdef double A[3][3]
-    cdef double B[3][3]
-    cdef double C[3][3]
-    cdef double aC[3][3]
-    cdef double a[3]
-    cdef double b[3]
-    cdef double t[3]
-    cdef double T[3]
-    cdef double ra, rb, u
-    cdef int i, j, d
-    for i in range(3):
-        a[i] = ha[i] * sa
-        b[i] = hb[i] * sb
-        for d in range(3):
-            A[i][d] = Ra[3 * d + i] / sa          # unit axis i of a (a column of R)
-            B[i][d] = Rb[3 * d + i] / sb
-    for d in range(3):
-        T[d] = xb[d] - xa[d]
-    for i in range(3):
-        t[i] = A[i][0] * T[0] + A[i][1] * T[1] + A[i][2] * T[2]
-        for j in range(3):
-            C[i][j] = A[i][0] * B[j][0] + A[i][1] * B[j][1] + A[i][2] * B[j][2]
-            aC[i][j] = fabs(C[i][j]) + 1e-12
-    for i in range(3):
-        if fabs(t[i]) > a[i] + b[0] * aC[i][0] + b[1] * aC[i][1] + b[2] * aC[i][2]:
-            return True
-    for j in range(3):
-        u = t[0] * C[0][j] + t[1] * C[1][j] + t[2] * C[2][j]
-        if fabs(u) > b[j] + a[0] * aC[0][j] + a[1] * aC[1][j] + a[2] * aC[2][j]:
-            return True
-    for i in range(3):
-        for j in range(3):
-            u = t[(i + 2) % 3] * C[(i + 1) % 3][j] - t[(i + 1) % 3] * C[(i + 2) % 3][j]
-            ra = a[(i + 1) % 3] * aC[(i + 2) % 3][j] + a[(i + 2) % 3] * aC[(i + 1) % 3][j]
-            rb = b[(j + 1) % 3] * aC[i][(j + 2) % 3] + b[(j + 2) % 3] * aC[i][(j + 1) % 3]
-            if fabs(u) > ra + rb:
-                return True
-    return False
-
-
 cdef inline void _piece(const TableView* T, int row, ShapeRef* ref) noexcept nogil:
     """The core GJK meets for a piece of row `row` (a ball: the point at its centre)."""
     if round_body(T, row):
@@ -191,7 +147,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
     cdef double dx[3]
     cdef double g[3]
     cdef double out[6]
-    cdef double r2, rsum, r, gn, tag, meff, weight, rmin, maxov = stats[2]
+    cdef double r2, rsum, r, gn, tag, meff, weight, rmin, sa, sb, maxov = stats[2]
     cdef double ncont = 0.0, npts = 0.0, energy = 0.0, ngjk = 0.0, nepa = 0.0, npairs = 0.0, ncands = 0.0
     cdef double nspheres = 0.0, nsph_entry
     cdef const double* xa
@@ -243,9 +199,11 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                         nspheres += 1.0
                         # then their bounding boxes (the spheres of elongated pieces are loose: Part III
                         # Fig. 29); a plain sphere particle (row -1) has none
-                        if crow[ia] >= 0 and crow[jb] >= 0 and _boxes_apart(
-                                &cpose[ia, 0], &cpose[ia, 9], &T.half[3 * crow[ia]], crad[ia] / T.radius[crow[ia]],
-                                &cpose[jb, 0], &cpose[jb, 9], &T.half[3 * crow[jb]], crad[jb] / T.radius[crow[jb]]):
+                        sa = crad[ia] / T.radius[crow[ia]] if crow[ia] >= 0 else 1.0
+                        sb = crad[jb] / T.radius[crow[jb]] if crow[jb] >= 0 else 1.0
+                        if crow[ia] >= 0 and crow[jb] >= 0 and boxes_apart(
+                                &cpose[ia, 0], sa, &cpose[ia, 9], &T.half[3 * crow[ia]], sa,
+                                &cpose[jb, 0], sb, &cpose[jb, 9], &T.half[3 * crow[jb]], sb):
                             continue
                         cand[2 * ncand] = a
                         cand[2 * ncand + 1] = b

@@ -29,6 +29,7 @@ import numpy as np
 from dem._history cimport KeyedBuffers, KeyedView, keyed_append, keyed_owner, keyed_reserve
 from dem._particles cimport ParticleView, Particles
 from dem.contact.record cimport Contact
+from dem.contact._bounds cimport boxes_apart
 from dem.contact._gjk cimport crust_contact, CONTACT_NONE, NFEAT
 from dem.contact._polytope cimport (Polytope, TopoTable, TopologyView, SatResult, PolyContact, polytope_ref,
                                     sat_penetration, contact_points, POLY_MAXP,
@@ -113,55 +114,6 @@ cdef inline int _sphere_poly(const Particles* P, const TableView* T, int i, int 
     if code == CONTACT_NONE:
         return 0
     return 1
-
-
-cdef inline bint _boxes_apart(const double* Ra, const double* xa, const double* ha, double sa,
-                              const double* Rb, const double* xb, const double* hb, double sb) noexcept nogil:
-    """Whether the bounding boxes (half sides h at scale 1, on the body axes; pure rotations R row-major body
-    -> world, scales s) of two posed bodies are apart: the 15 separating axes of two boxes (as
-    dem_glued's cull), with a 1e-12 slack on parallel edges so that touching boxes are never apart. A cheap
-    cull before the exact separating-axis test of the polytopes (diagonal neighbours of a cube lattice)."""
-    cdef double A[3][3]
-    cdef double B[3][3]
-    cdef double C[3][3]
-    cdef double aC[3][3]
-    cdef double a[3]
-    cdef double b[3]
-    cdef double t[3]
-    cdef double T[3]
-    cdef double ra, rb, u
-    cdef int i, j, d
-    for i in range(3):
-        a[i] = ha[i] * sa
-        b[i] = hb[i] * sb
-        for d in range(3):
-            A[i][d] = Ra[3 * d + i]
-            B[i][d] = Rb[3 * d + i]
-    for d in range(3):
-        T[d] = xb[d] - xa[d]
-    for i in range(3):
-        t[i] = A[i][0] * T[0] + A[i][1] * T[1] + A[i][2] * T[2]
-        for j in range(3):
-            C[i][j] = A[i][0] * B[j][0] + A[i][1] * B[j][1] + A[i][2] * B[j][2]
-            aC[i][j] = (C[i][j] if C[i][j] >= 0.0 else -C[i][j]) + 1e-12
-    for i in range(3):
-        u = t[i] if t[i] >= 0.0 else -t[i]
-        if u > a[i] + b[0] * aC[i][0] + b[1] * aC[i][1] + b[2] * aC[i][2]:
-            return True
-    for j in range(3):
-        u = t[0] * C[0][j] + t[1] * C[1][j] + t[2] * C[2][j]
-        u = u if u >= 0.0 else -u
-        if u > b[j] + a[0] * aC[0][j] + a[1] * aC[1][j] + a[2] * aC[2][j]:
-            return True
-    for i in range(3):
-        for j in range(3):
-            u = t[(i + 2) % 3] * C[(i + 1) % 3][j] - t[(i + 1) % 3] * C[(i + 2) % 3][j]
-            u = u if u >= 0.0 else -u
-            ra = a[(i + 1) % 3] * aC[(i + 2) % 3][j] + a[(i + 2) % 3] * aC[(i + 1) % 3][j]
-            rb = b[(j + 1) % 3] * aC[i][(j + 2) % 3] + b[(j + 2) % 3] * aC[i][(j + 1) % 3]
-            if u > ra + rb:
-                return True
-    return False
 
 
 cdef inline i64 _match(const KeyedView* h, i64 k, const double* b, double tol2, bint* taken, i64* fresh) noexcept nogil:
@@ -253,8 +205,8 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 else:
                     sj_scale = P.radius[j] / T.radius[sj]
                     _rot(P, j, Rj)
-                    if _boxes_apart(Ri, &P.x[3 * i], &T.half[3 * si], si_scale,
-                                    Rj, &P.x[3 * j], &T.half[3 * sj], sj_scale):
+                    if boxes_apart(Ri, 1.0, &P.x[3 * i], &T.half[3 * si], si_scale,
+                                   Rj, 1.0, &P.x[3 * j], &T.half[3 * sj], sj_scale):
                         continue
                     polytope_ref(TT, si, &A)
                     polytope_ref(TT, sj, &B)
