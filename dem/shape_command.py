@@ -104,6 +104,17 @@ def shape_view(sim):
     return sim.shapes.view()
 
 
+def pair_shape_view(sim):
+    """shape_view for a pair style's init, with the warning every shaped pair style gives (collective) when
+    shaped particles are not integrated by fix nve/shape."""
+    atom = sim.atom
+    shaped = sim.comm.any(bool(np.any(atom.data["shape"][:atom.nlocal] >= 0)))
+    if shaped and not any(f.style == "nve/shape" for f in sim.modify.integrators):
+        sim.warning("shaped particles are integrated without fix nve/shape: their rotation is that of "
+                    "a sphere (wrong for non-spherical bodies)")
+    return shape_view(sim)
+
+
 def shape_index(sim, name):
     t = table(sim)
     if len(t) == 0:

@@ -1,5 +1,4 @@
 """pair_style convex/gjk: convex particles of the shape table, mixed with spheres."""
-import numpy as np
 
 from dem import shape_command
 from dem._particles import ParticleView
@@ -88,12 +87,7 @@ class PairConvexGJK(PairCoefficients, Pair):
             self.history = History(self.sim, "pair_convex", _pair_convex.HISTORY)
             self.sim.neighbor.histories.append(self.history)
         sim = self.sim
-        atom = sim.atom
-        shaped = sim.comm.any(bool(np.any(atom.data["shape"][:atom.nlocal] >= 0)))
-        if shaped and not any(f.style == "nve/shape" for f in sim.modify.integrators):
-            sim.warning("shaped particles are integrated without fix nve/shape: their rotation is that of "
-                        "a sphere (wrong for non-spherical bodies)")
-        self.shape_view = shape_command.shape_view(sim)
+        self.shape_view = shape_command.pair_shape_view(sim)
 
     def compute(self, advance=True):
         sim = self.sim

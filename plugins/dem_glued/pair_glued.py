@@ -86,12 +86,7 @@ class PairGluedConvex(PairCoefficients, Pair):
         if self.history is None:
             self.history = KeyedHistory(sim, "pair_glued", _pair_glued.RECORD)
             sim.neighbor.histories.append(self.history)
-        atom = sim.atom
-        shaped = sim.comm.any(bool(np.any(atom.data["shape"][:atom.nlocal] >= 0)))
-        if shaped and not any(f.style == "nve/shape" for f in sim.modify.integrators):
-            sim.warning("shaped particles are integrated without fix nve/shape: their rotation is that of "
-                        "a sphere (wrong for non-spherical bodies)")
-        self.shape_view = shape_command.shape_view(sim)
+        self.shape_view = shape_command.pair_shape_view(sim)
 
     def compute(self, advance=True):
         sim = self.sim

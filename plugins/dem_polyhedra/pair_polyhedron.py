@@ -94,7 +94,7 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         self.use_xi = self.check_coefficients() and self.law == "grains3d"
         sim = self.sim
         atom = sim.atom
-        self.shape_view = shape_command.shape_view(sim)
+        self.shape_view = shape_command.pair_shape_view(sim)
         rows = sim.shapes.rows
         # the shape table has no topology yet: packed here, row for row (dem/shapes/topology.py)
         packed = pack_topology(rows)
@@ -112,10 +112,6 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         if self.use_xi and self.history is None:
             self.history = KeyedHistory(sim, "pair_polyhedron", _pair_polyhedron.RECORD)
             sim.neighbor.histories.append(self.history)
-        shaped = sim.comm.any(bool(np.any(atom.data["shape"][:atom.nlocal] >= 0)))
-        if shaped and not any(f.style == "nve/shape" for f in sim.modify.integrators):
-            sim.warning("shaped particles are integrated without fix nve/shape: their rotation is that of "
-                        "a sphere (wrong for non-spherical bodies)")
 
     def _kernel(self, view, st, buffers, use_xi, advance):
         nb = self.sim.neighbor
