@@ -40,6 +40,7 @@ cdef struct Polytope:      # one body's topology in its body frame (all ids loca
     const int* fverts
     const int* edges       # 2 ne: vertex ids (v0, v1)
     const int* efaces      # 2 ne: face f0 (runs v0 -> v1), face f1 (runs v1 -> v0)
+    const double* half     # 3: half sides when laid out as topology.box_topology's (the box path), else NULL
 
 cdef struct TopoTable:     # pack_topology's arrays (dem/shapes/topology.py) as pointers
     int nrows
@@ -60,6 +61,7 @@ cdef struct TopoTable:     # pack_topology's arrays (dem/shapes/topology.py) as 
     const int* face_verts
     const int* edge_verts
     const int* edge_faces
+    const double* box_half # 3 nrows, zeros on rows that are not boxes
 
 cdef class TopologyView:
     cdef TopoTable t
@@ -97,6 +99,7 @@ cdef inline void polytope_ref(const TopoTable* t, int s, Polytope* p) noexcept n
     p.fverts = t.face_verts + t.fvoff[s]
     p.edges = t.edge_verts + 2 * e0
     p.efaces = t.edge_faces + 2 * e0
+    p.half = t.box_half + 3 * s if t.box_half[3 * s] > 0.0 else NULL
 
 
 cdef int sat_penetration(const Polytope* A, const double* Ra, double sa, const double* xa,
@@ -109,4 +112,4 @@ cdef int contact_points(const Polytope* A, const double* Ra, double sa, const do
 
 cdef int polytope_contact(const Polytope* A, const double* Ra, double sa, const double* xa,
                           const Polytope* B, const double* Rb, double sb, const double* xb,
-                          double ftol, SatResult* sat, PolyContact* out) noexcept nogil
+                          double ftol, double ftol_depth, SatResult* sat, PolyContact* out) noexcept nogil

@@ -50,10 +50,12 @@ from dem.shapes._support cimport quat_to_rot
 cdef double SAT_TIE = 1e-12        # relative (to the bounding radii) tolerance of axis ties
 cdef double SAT_PARALLEL = 1e-12   # |sin| of two edges below which they are parallel (skipped)
 cdef double SAT_SMALLSIN = 1e-4    # below this |sin| an edge axis is evaluated from the full supports
+cdef enum:
+    SUPPORT_BUF = 256              # support values kept per body in _contact_frame (larger bodies recompute)
 cdef double HULL_TOL = 1e-12       # relative (to L) distance below which plane points coincide / are collinear
 
 COLUMNS = ("poly", "voff", "nv", "foff", "nf", "eoff", "ne", "fvoff", "radius", "verts", "face_normal",
-           "face_offset", "face_first", "face_count", "face_verts", "edge_verts", "edge_faces")
+           "face_offset", "face_first", "face_count", "face_verts", "edge_verts", "edge_faces", "box_half")
 MAXP = POLY_MAXP
 
 
@@ -65,14 +67,14 @@ cdef class TopologyView:
         a["voff"], a["foff"], a["eoff"], a["fvoff"] = (a[k].astype(np.int64) for k in ("voff", "foff", "eoff", "fvoff"))
         for k in ("poly", "nv", "nf", "ne", "face_first", "face_count", "face_verts", "edge_verts", "edge_faces"):
             a[k] = np.ascontiguousarray(a[k], np.int32).reshape(-1)
-        for k in ("radius", "verts", "face_normal", "face_offset"):
+        for k in ("radius", "verts", "face_normal", "face_offset", "box_half"):
             a[k] = np.ascontiguousarray(a[k], float).reshape(-1)
         cdef const int[::1] poly = a["poly"], nv = a["nv"], nf = a["nf"], ne = a["ne"]
         cdef const int[::1] ff = a["face_first"], fc = a["face_count"], fv = a["face_verts"]
         cdef const int[::1] ev = a["edge_verts"], ef = a["edge_faces"]
         cdef const i64[::1] voff = a["voff"], foff = a["foff"], eoff = a["eoff"], fvoff = a["fvoff"]
         cdef const double[::1] radius = a["radius"], verts = a["verts"], fn = a["face_normal"]
-        cdef const double[::1] fo = a["face_offset"]
+        cdef const double[::1] fo = a["face_offset"], bh = a["box_half"]
         self.arrays = a
         self.t.nrows = <int>poly.shape[0]
         self.t.poly = &poly[0]
@@ -92,6 +94,7 @@ cdef class TopologyView:
         self.t.face_verts = &fv[0]
         self.t.edge_verts = &ev[0]
         self.t.edge_faces = &ef[0]
+        self.t.box_half = &bh[0]
 
     @property
     def nrows(self):
@@ -182,9 +185,126 @@ cdef inline void _b_point(const Polytope* B, const Frame* F, int k, double* o) n
 
 
 # ---------------------------------------------------------------- penetration
+cdef inline int _box_edge(const Polytope* P, int i, const double* w) noexcept nogil:
+    """The edge of box P along its axis i that supports direction w (P's frame): its end corners differ in
+    bit i and share bit k = (w_k > 0) for the other axes (box_corners order)."""
+    cdef int k, c = 0, e
+    for k in range(3):
+        if k != i and w[k] > 0.0:
+            c |= 1 << k
+    for e in range(P.ne):
+        if (P.edges[2 * e] == c and P.edges[2 * e + 1] == c | (1 << i)) or (
+                P.edges[2 * e + 1] == c and P.edges[2 * e] == c | (1 << i)):
+            return e
+    return -1
+
+
+cdef int _sat_box(const Polytope* A, const Polytope* B, const Frame* F, double* u_out, SatResult* out) noexcept nogil:
+    """_sat_frame for two boxes: the 15 axes of the box-box separating-axis test in closed form (the classic
+    OBB identities of an orthonormal M: the edge axis e_i x M e_j has length sqrt(1 - M_ij^2) and projects
+    the boxes on sums of two |M| terms), with the same candidates, values, orientation (u from A towards B)
+    and tie rules as the general loop and no vertex loop. Returns at the first axis that separates the boxes
+    (depth < 0 is then that axis' gap, a lower bound of their distance)."""
+    cdef double tie = SAT_TIE * F.L
+    cdef double a[3]
+    cdef double b[3]
+    cdef double Ab[9]              # |M_ij|
+    cdef double rA[3]              # A's radius along B's axis j: sum_i a_i |M_ij|
+    cdef double rB[3]              # B's radius along A's axis i: sum_j b_j |M_ij|
+    cdef double tb[3]              # t along B's axes: M^T t
+    cdef double u[3]
+    cdef double uE[3]
+    cdef double w[3]
+    cdef double bestA = INFINITY, bestB = INFINITY, bestE = INFINITY, d, l2, tu, sgn, inv
+    cdef int fa = -1, fb = -1, ea = -1, eb = -1, i, j, k, sd, i1, i2, j1, j2
+    cdef const double* t = F.t
+    cdef const double* M = F.M
+    for k in range(3):
+        a[k] = F.sa * A.half[k]
+        b[k] = F.sb * B.half[k]
+    for k in range(9):
+        Ab[k] = fabs(M[k])
+    for k in range(3):
+        rB[k] = b[0] * Ab[3 * k] + b[1] * Ab[3 * k + 1] + b[2] * Ab[3 * k + 2]
+        rA[k] = a[0] * Ab[k] + a[1] * Ab[3 + k] + a[2] * Ab[6 + k]
+        tb[k] = M[k] * t[0] + M[3 + k] * t[1] + M[6 + k] * t[2]
+    # faces of A, in box_topology's order (face 2i + sd has normal (2 sd - 1) e_i)
+    for i in range(3):
+        for sd in range(2):
+            sgn = 2.0 * sd - 1.0
+            d = a[i] + rB[i] - sgn * t[i]
+            if d < 0.0:
+                out.axis, out.fa, out.fb, out.depth = AXIS_FACE_A, 2 * i + sd, -1, d
+                u_out[0], u_out[1], u_out[2] = 0.0, 0.0, 0.0
+                u_out[i] = sgn
+                return 0
+            if d < bestA - tie:
+                bestA = d
+                fa = 2 * i + sd
+    # faces of B: outward m = sgn M e_j, u = -m
+    for j in range(3):
+        for sd in range(2):
+            sgn = 2.0 * sd - 1.0
+            d = rA[j] + sgn * tb[j] + b[j]
+            if d < 0.0:
+                out.axis, out.fa, out.fb, out.depth = AXIS_FACE_B, -1, 2 * j + sd, d
+                u_out[0], u_out[1], u_out[2] = -sgn * M[j], -sgn * M[3 + j], -sgn * M[6 + j]
+                return 0
+            if d < bestB - tie:
+                bestB = d
+                fb = 2 * j + sd
+    # edge directions u = e_i x M e_j (length sqrt(1 - M_ij^2)), oriented towards B
+    for j in range(3):
+        j1 = (j + 1) % 3
+        j2 = (j + 2) % 3
+        for i in range(3):
+            i1 = (i + 1) % 3
+            i2 = (i + 2) % 3
+            l2 = M[3 * i1 + j] * M[3 * i1 + j] + M[3 * i2 + j] * M[3 * i2 + j]
+            if l2 <= SAT_PARALLEL * SAT_PARALLEL:
+                continue
+            inv = 1.0 / sqrt(l2)
+            tu = t[i2] * M[3 * i1 + j] - t[i1] * M[3 * i2 + j]
+            d = (a[i1] * Ab[3 * i2 + j] + a[i2] * Ab[3 * i1 + j] + b[j1] * Ab[3 * i + j2] + b[j2] * Ab[3 * i + j1]
+                 - fabs(tu)) * inv
+            if d < 0.0 or d < bestE - tie:
+                sgn = inv if tu >= 0.0 else -inv
+                u[i] = 0.0
+                u[i1] = -sgn * M[3 * i2 + j]
+                u[i2] = sgn * M[3 * i1 + j]
+                if d < 0.0:
+                    out.axis, out.fa, out.fb, out.depth = AXIS_EDGE, -1, -1, d
+                    u_out[0], u_out[1], u_out[2] = u[0], u[1], u[2]
+                    return 0
+                bestE = d
+                ea = i
+                eb = j
+                uE[0], uE[1], uE[2] = u[0], u[1], u[2]
+    if bestB < bestA - tie:
+        sgn = 2.0 * (fb % 2) - 1.0
+        out.axis, out.fa, out.fb, out.depth = AXIS_FACE_B, -1, fb, bestB
+        j = fb // 2
+        u_out[0], u_out[1], u_out[2] = -sgn * M[j], -sgn * M[3 + j], -sgn * M[6 + j]
+    else:
+        sgn = 2.0 * (fa % 2) - 1.0
+        out.axis, out.fa, out.fb, out.depth = AXIS_FACE_A, fa, -1, bestA
+        u_out[0], u_out[1], u_out[2] = 0.0, 0.0, 0.0
+        u_out[fa // 2] = sgn
+    if ea >= 0 and bestE < out.depth - tie:
+        out.axis, out.depth = AXIS_EDGE, bestE
+        u_out[0], u_out[1], u_out[2] = uE[0], uE[1], uE[2]
+        out.fa = _box_edge(A, ea, uE)
+        _tmul(M, uE, w)
+        w[0], w[1], w[2] = -w[0], -w[1], -w[2]
+        out.fb = _box_edge(B, eb, w)
+    return 1 if out.depth > 0.0 else 0
+
+
 cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double* u_out, SatResult* out) noexcept nogil:
     """The separating-axis minimum in A's frame: out (depth, axis, fa, fb) and u_out (from A towards B).
-    Returns 1 when depth > 0 (overlap)."""
+    Returns 1 when depth > 0 (overlap). Two boxes take the closed-form path _sat_box."""
+    if A.half != NULL and B.half != NULL:
+        return _sat_box(A, B, F, u_out, out)
     cdef double tie = SAT_TIE * F.L
     cdef double bestA = INFINITY, bestB = INFINITY, bestE = INFINITY, d, l2, ea2, eb2
     cdef int fa = -1, fb = -1, ea = -1, eb = -1, f, g, i, j
@@ -392,6 +512,40 @@ cdef int _hull2(double* P, int n, double tol) noexcept nogil:
     return k
 
 
+cdef int _clean_ring(double* P, int n, double tol) noexcept nogil:
+    """The counter-clockwise convex ring P (n >= 3, as clipping leaves it) without its repeated corners
+    (closer than tol, wrap-around included) and its straight ones (within tol of the chord, as _hull2):
+    _hull2's result up to the starting point (which _canonical sets) in a linear pass. A ring that does not
+    stay a proper polygon (round-off) goes through _hull2."""
+    cdef double Q[2 * (4 * POLY_MAXFEAT + 4)]
+    cdef int i, m = 0, k, changed
+    for i in range(n):
+        if m == 0 or fabs(P[2 * i] - Q[2 * m - 2]) + fabs(P[2 * i + 1] - Q[2 * m - 1]) > tol:
+            Q[2 * m] = P[2 * i]
+            Q[2 * m + 1] = P[2 * i + 1]
+            m += 1
+    while m > 1 and fabs(Q[0] - Q[2 * m - 2]) + fabs(Q[1] - Q[2 * m - 1]) <= tol:
+        m -= 1
+    changed = 1
+    while changed and m >= 3:
+        changed = 0
+        for i in range(m):
+            k = (i + m - 1) % m
+            if _orient(&Q[2 * k], &Q[2 * i], &Q[2 * ((i + 1) % m)]) <= tol * (
+                    fabs(Q[2 * ((i + 1) % m)] - Q[2 * k]) + fabs(Q[2 * ((i + 1) % m) + 1] - Q[2 * k + 1])):
+                for k in range(i, m - 1):
+                    Q[2 * k] = Q[2 * k + 2]
+                    Q[2 * k + 1] = Q[2 * k + 3]
+                m -= 1
+                changed = 1
+                break
+    if m < 3:
+        return _hull2(P, n, tol)
+    for i in range(2 * m):
+        P[i] = Q[i]
+    return m
+
+
 cdef int _clip_poly(const double* S, int ns, const double* C, int nc, double* out, double tol) noexcept nogil:
     """Sutherland-Hodgman: the convex polygon S (ns, CCW) clipped by the convex polygon C (nc, CCW);
     returns the count written to out (room for ns + nc points)."""
@@ -553,8 +707,11 @@ cdef int _contact_frame(const Polytope* A, const Polytope* B, const Frame* F, co
     cdef double PA[2 * (2 * POLY_MAXFEAT + 2)]
     cdef double PB[2 * (2 * POLY_MAXFEAT + 2)]
     cdef double W[2 * (4 * POLY_MAXFEAT + 4)]
-    cdef double q[3]
-    cdef double w[3]
+    cdef double sA[SUPPORT_BUF]
+    cdef double sB[SUPPORT_BUF]
+    cdef double ub[3]
+    cdef double t1b[3]
+    cdef double t2b[3]
     cdef double e[3]
     cdef double hA = -INFINITY, hB = -INFINITY, s, ln, tol = HULL_TOL * F.L
     cdef int k, na = 0, nb = 0, n, ax
@@ -576,32 +733,37 @@ cdef int _contact_frame(const Polytope* A, const Polytope* B, const Frame* F, co
     t1[1] *= ln
     t1[2] *= ln
     _cross(u, t1, t2)
-    # extreme values
+    # support values of every vertex along u (A) and -u (B), then the vertices within ftol of the extreme;
+    # B is read in its own frame (directions rotated once by M^T) rather than posed vertex by vertex
+    _tmul(F.M, u, ub)
+    _tmul(F.M, t1, t1b)
+    _tmul(F.M, t2, t2b)
     for k in range(A.nv):
         s = F.sa * _dot(u, A.verts + 3 * k)
+        if k < SUPPORT_BUF:
+            sA[k] = s
         if s > hA:
             hA = s
-    w[0] = -u[0]
-    w[1] = -u[1]
-    w[2] = -u[2]
     for k in range(B.nv):
-        _b_point(B, F, k, q)
-        s = _dot(w, q)
+        s = -_dot(u, F.t) - F.sb * _dot(ub, B.verts + 3 * k)
+        if k < SUPPORT_BUF:
+            sB[k] = s
         if s > hB:
             hB = s
     cplane[0] = 0.5 * (hA - hB)
-    # the features, projected
     for k in range(A.nv):
         v = A.verts + 3 * k
-        if F.sa * _dot(u, v) >= hA - ftol and na < POLY_MAXFEAT:
+        s = sA[k] if k < SUPPORT_BUF else F.sa * _dot(u, v)
+        if s >= hA - ftol and na < POLY_MAXFEAT:
             PA[2 * na] = F.sa * _dot(t1, v)
             PA[2 * na + 1] = F.sa * _dot(t2, v)
             na += 1
     for k in range(B.nv):
-        _b_point(B, F, k, q)
-        if _dot(w, q) >= hB - ftol and nb < POLY_MAXFEAT:
-            PB[2 * nb] = _dot(t1, q)
-            PB[2 * nb + 1] = _dot(t2, q)
+        v = B.verts + 3 * k
+        s = sB[k] if k < SUPPORT_BUF else -_dot(u, F.t) - F.sb * _dot(ub, v)
+        if s >= hB - ftol and nb < POLY_MAXFEAT:
+            PB[2 * nb] = _dot(t1, F.t) + F.sb * _dot(t1b, v)
+            PB[2 * nb + 1] = _dot(t2, F.t) + F.sb * _dot(t2b, v)
             nb += 1
     na = _hull2(PA, na, tol)
     nb = _hull2(PB, nb, tol)
@@ -631,7 +793,7 @@ cdef int _contact_frame(const Polytope* A, const Polytope* B, const Frame* F, co
     else:
         n = _clip_poly(PA, na, PB, nb, W, tol)
         if n >= 3:
-            n = _hull2(W, n, tol)          # drop the repeated / collinear corners clipping leaves
+            n = _clean_ring(W, n, tol)     # drop the repeated / collinear corners clipping leaves
     if n == 0:                             # features apart in the plane (round-off): midpoint of centroids
         W[0] = 0.0
         W[1] = 0.0
@@ -709,8 +871,9 @@ cdef int contact_points(const Polytope* A, const double* Ra, double sa, const do
 
 cdef int polytope_contact(const Polytope* A, const double* Ra, double sa, const double* xa,
                           const Polytope* B, const double* Rb, double sb, const double* xb,
-                          double ftol, SatResult* sat, PolyContact* out) noexcept nogil:
-    """sat_penetration then contact_points, sharing the frame; returns npoints (0: no overlap)."""
+                          double ftol, double ftol_depth, SatResult* sat, PolyContact* out) noexcept nogil:
+    """sat_penetration then contact_points with the feature tolerance ftol + ftol_depth depth, sharing the
+    frame; returns npoints (0: no overlap)."""
     cdef Frame F
     cdef double u[3]
     _frame(A, Ra, sa, xa, B, Rb, sb, xb, &F)
@@ -727,7 +890,7 @@ cdef int polytope_contact(const Polytope* A, const double* Ra, double sa, const 
     sat.n[0], sat.n[1], sat.n[2] = -sat.n[0], -sat.n[1], -sat.n[2]
     out.depth = sat.depth
     out.n[0], out.n[1], out.n[2] = sat.n[0], sat.n[1], sat.n[2]
-    return _points_world(A, B, &F, Ra, xa, u, sat.depth, ftol, out)
+    return _points_world(A, B, &F, Ra, xa, u, sat.depth, ftol + ftol_depth * sat.depth, out)
 
 
 # ---------------------------------------------------------------- Python entries (tests, tools)
@@ -740,11 +903,11 @@ def _pose(q):
 
 
 def pair(TopologyView tv, int ia, int ib, xa, qa, xb, qb, double sa=1.0, double sb=1.0, double ftol=-1.0,
-         bint points=True):
+         bint points=True, bint box_path=True):
     """One pair (rows ia, ib of the packed topology) at poses (x, unit quaternion q (w, x, y, z), scale s).
     Returns (overlap, depth, normal from B to A, axis, fa, fb, type, points (npoints, 3), nfa, nfb);
     ftol < 0 means 1e-9 (sa radius_a + sb radius_b). With points false only the first six are computed
-    (type 0, no points)."""
+    (type 0, no points). box_path false sends two boxes through the general loop (tests compare both)."""
     if not (0 <= ia < tv.t.nrows and 0 <= ib < tv.t.nrows) or not (tv.t.poly[ia] and tv.t.poly[ib]):
         raise ValueError("rows %d, %d are not polytopes of this table" % (ia, ib))
     cdef Polytope A, B
@@ -755,11 +918,13 @@ def pair(TopologyView tv, int ia, int ib, xa, qa, xb, qb, double sa=1.0, double 
     cdef int hit
     polytope_ref(&tv.t, ia, &A)
     polytope_ref(&tv.t, ib, &B)
+    if not box_path:
+        A.half = B.half = NULL
     if ftol < 0:
         ftol = 1e-9 * (sa * A.radius + sb * B.radius)
     with nogil:
         if points:
-            polytope_contact(&A, &Ra[0], sa, &xa_[0], &B, &Rb[0], sb, &xb_[0], ftol, &sat, &pc)
+            polytope_contact(&A, &Ra[0], sa, &xa_[0], &B, &Rb[0], sb, &xb_[0], ftol, 0.0, &sat, &pc)
         else:
             sat_penetration(&A, &Ra[0], sa, &xa_[0], &B, &Rb[0], sb, &xb_[0], &sat)
             pc.type = PC_NONE
@@ -789,7 +954,7 @@ def time_pairs(TopologyView tv, int[::1] ia, int[::1] ib, double[:, ::1] xa, dou
                 polytope_ref(&tv.t, ib[k], &B)
                 if points:
                     hits += polytope_contact(&A, &Ra[k, 0], 1.0, &xa[k, 0], &B, &Rb[k, 0], 1.0, &xb[k, 0],
-                                             ftol, &sat, &pc) > 0
+                                             ftol, 0.0, &sat, &pc) > 0
                 else:
                     hits += sat_penetration(&A, &Ra[k, 0], 1.0, &xa[k, 0], &B, &Rb[k, 0], 1.0, &xb[k, 0], &sat)
     return (time.perf_counter() - t0) / (reps * m), hits

@@ -46,12 +46,13 @@ def _vec(x, n):
     return a
 
 
-def penetration(shape_a, x_a, q_a, shape_b, x_b, q_b):
+def penetration(shape_a, x_a, q_a, shape_b, x_b, q_b, box_path=True):
     """Penetration(depth, normal, axis, fa, fb): depth > 0 when the bodies overlap (else <= 0: a separating
     axis exists), unit normal from b to a, axis AXIS_FACE_A (fa: face of a), AXIS_FACE_B (fb: face of b) or
-    AXIS_EDGE (fa, fb: the edges), ids into shape.topology."""
+    AXIS_EDGE (fa, fb: the edges), ids into shape.topology. Two boxes take the closed-form 15-axis path
+    unless ``box_path`` is false (the general loop; tests compare the two)."""
     r = _polytope.pair(_pair(shape_a, shape_b), 0, 1, _vec(x_a, 3), _vec(q_a, 4), _vec(x_b, 3), _vec(q_b, 4),
-                       points=False)
+                       points=False, box_path=box_path)
     return Penetration(r[1], r[2], r[3], r[4], r[5])
 
 

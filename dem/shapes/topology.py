@@ -206,7 +206,20 @@ def check(topo, tol=1e-9):
 # ---------------------------------------------------------------- flat packing
 PACKED_COLUMNS = ("poly", "voff", "nv", "foff", "nf", "eoff", "ne", "fvoff", "radius",
                   "verts", "face_normal", "face_offset", "face_first", "face_count", "face_verts",
-                  "edge_verts", "edge_faces")
+                  "edge_verts", "edge_faces", "box_half")
+
+
+def box_half(topo):
+    """The half sides of a topology laid out exactly as box_topology's (corner, face and edge order), else
+    None: the kernels take the 15-axis box path for such rows (dem/contact/_polytope.pyx)."""
+    if topo.nv != 8 or topo.nf != 6 or topo.ne != 12:
+        return None
+    h = np.abs(topo.vertices[7])
+    ref = box_topology(h)
+    if not (np.array_equal(topo.vertices, ref.vertices) and np.array_equal(topo.face_normals, ref.face_normals)
+            and np.array_equal(topo.edges, ref.edges) and np.array_equal(topo.edge_faces, ref.edge_faces)):
+        return None
+    return h
 
 
 def pack_topology(shapes):
@@ -218,12 +231,14 @@ def pack_topology(shapes):
       (F,), ``face_first`` (F,) and ``face_count`` (F,); ``fvoff[s]`` into ``face_verts``: face f of row s has
       the vertex ids ``face_verts[fvoff[s] + face_first[foff[s] + f] + k]``, k < ``face_count[foff[s] + f]``;
       ``eoff[s], ne[s]`` into ``edge_verts`` (E, 2) and ``edge_faces`` (E, 2); ``radius[s]`` the largest vertex
-      norm. All ids stored are local to the row. Empty shared arrays get one dummy entry (never read).
+      norm; ``box_half[s]`` (3,) the half sides of a row laid out as box_topology's, else zeros (``box_half``).
+      All ids stored are local to the row. Empty shared arrays get one dummy entry (never read).
     """
     n = len(shapes)
     out = {k: np.zeros(n, np.int64) for k in ("voff", "foff", "eoff", "fvoff")}
     out.update({k: np.zeros(n, np.int32) for k in ("poly", "nv", "nf", "ne")})
     out["radius"] = np.zeros(n)
+    out["box_half"] = np.zeros((n, 3))
     V, FN, FO, FF, FC, FV, EV, EF = [], [], [], [], [], [], [], []
     nv = nf = ne = nfv = 0
     for i, s in enumerate(shapes):
@@ -236,6 +251,9 @@ def pack_topology(shapes):
         out["eoff"][i], out["ne"][i] = ne, t.ne
         out["fvoff"][i] = nfv
         out["radius"][i] = float(np.linalg.norm(t.vertices, axis=1).max())
+        h = box_half(t)
+        if h is not None:
+            out["box_half"][i] = h
         V.append(t.vertices)
         FN.append(t.face_normals)
         FO.append(t.face_offsets)

@@ -3,7 +3,7 @@
 with as many contact points as the contact geometry has (Descantes 2022 sec. 2).
 
 Per listed pair whose bounding spheres overlap (and, two polytopes, whose bounding boxes do: 15 axes):
-* two polytopes: sat_penetration then contact_points (dem/contact/_polytope.pyx: exact separating-axis
+* two polytopes: polytope_contact (dem/contact/_polytope.pyx: exact separating-axis
   depth and normal, the contacting features clipped on the contact plane): alpha = 1 (vertex/face,
   edge/edge), 2 (edge/face) or >= 3 (face/face) points, all with the shared maximum overlap. A body's
   contacting feature is its vertices within ftol = ftol_rel (r_i + r_j) + delta of its deepest vertex along
@@ -29,10 +29,10 @@ import numpy as np
 from dem._history cimport KeyedBuffers, KeyedView, keyed_append, keyed_owner, keyed_reserve
 from dem._particles cimport ParticleView, Particles
 from dem.contact.record cimport Contact
-from dem.contact._bounds cimport boxes_apart
+from dem.contact._bounds cimport boxes_gap
 from dem.contact._gjk cimport crust_contact, CONTACT_NONE, NFEAT
 from dem.contact._polytope cimport (Polytope, TopoTable, TopologyView, SatResult, PolyContact, polytope_ref,
-                                    sat_penetration, contact_points, POLY_MAXP,
+                                    polytope_contact, POLY_MAXP,
                                     PC_FACE_FACE)
 from dem.shapes._support cimport ShapeRef, Kind, quat_to_rot, NPARAM
 from dem.shapes._table cimport ShapeView, TableView, body_ref, round_body
@@ -49,6 +49,7 @@ MAXP = POLY_MAXP
 cdef double MATCH = 0.25           # history match radius, times the bounding radius of the owner's row
 MATCH_RADIUS = MATCH
 cdef double GJK_TOL = 1e-10
+cdef double MARGIN_SAFETY = 1e-12  # margins are kept this much (relative to rsum) short of the round-off
 
 cdef double POINT_PARAMS[NPARAM]   # a sphere of radius 0 (zero-initialised)
 
@@ -59,6 +60,14 @@ STATS = ("contacts", "points", "max_overlap", "energy", "vertex_face", "edge_edg
 
 cdef inline void _rot(const Particles* P, int i, double* R) noexcept nogil:
     quat_to_rot(&P.quat[4 * i], R)
+
+
+cdef inline void _unscaled(const double* Rs, double s, double* R) noexcept nogil:
+    """The pure rotation of a scaled one (poses' rot[i] = s R)."""
+    cdef double inv = 1.0 / s
+    cdef int k
+    for k in range(9):
+        R[k] = Rs[k] * inv
 
 
 cdef inline int _sphere_poly(const Particles* P, const TableView* T, int i, int j, bint i_round,
@@ -142,11 +151,18 @@ cdef inline i64 _match(const KeyedView* h, i64 k, const double* b, double tol2, 
 
 
 def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, const double[:, :, ::1] coeff,
-            ShapeView shapes, TopologyView topo, double[::1] stats, KeyedBuffers hist, bint use_xi,
-            double ftol_rel, double dt, bint advance, int law, i64 start):
+            ShapeView shapes, TopologyView topo, const double[:, ::1] rot, const double[::1] move,
+            double[::1] margin, double[::1] stats, KeyedBuffers hist, bint use_xi, double ftol_rel, double dt,
+            bint advance, int law, i64 start):
     """Adds the contact forces and torques of list entries from `start` on; returns -1, or the entry to
     resume from when the history buffer is full (dem/_history.pxd). stats receives STATS (summed; the
-    caller resets them once per step)."""
+    caller resets them once per step).
+
+    rot[i] (scale_i R_i) and move[i] (how far any point of particle i moved since the last call) come from
+    dem_convex's poses, once per step. margin[k] caches a lower bound of the gap of entry k (bounding
+    spheres, or the largest separation along a candidate axis of the separating-axis query); it shrinks by
+    move[i] + move[j] per call and the pair is skipped while it stays positive: the test would find it apart
+    again, and an apart pair has no record, so the cache changes no result (as `convex/gjk`)."""
     cdef Particles particles = view.p
     cdef const Particles* P = &particles
     cdef TableView table = shapes.t
@@ -160,7 +176,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
     cdef double Rj[9]
     cdef double bpt[3]
     cdef double out[6]
-    cdef double r2, rsum, dist, meff, weight, si_scale, sj_scale, reff, tol2
+    cdef double r2, rsum, dist, meff, weight, si_scale, sj_scale, reff, tol2, gap
     cdef double maxov = stats[2]
     cdef bint ri, rj
     cdef bint taken[4 * POLY_MAXP]
@@ -176,12 +192,18 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
         for i in range(keyed_owner(&offsets[0], P.nlocal, start), P.nlocal):
             for k in range(max(offsets[i], start), offsets[i + 1]):
                 j = neigh[k]
+                gap = margin[k] - (move[i] + move[j])
+                if gap > 0.0:
+                    margin[k] = gap
+                    continue                   # still apart (no record: the pair's history is forgotten)
+                margin[k] = 0.0
                 for d in range(3):
                     dx[d] = P.x[3 * i + d] - P.x[3 * j + d]
                 r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]
                 rsum = P.radius[i] + P.radius[j]
                 if r2 >= rsum * rsum:
-                    continue                   # no record: the pair's history is forgotten
+                    margin[k] = sqrt(r2) - rsum - MARGIN_SAFETY * rsum
+                    continue
                 si = P.shape[i]
                 sj = P.shape[j]
                 ri = round_body(T, si)
@@ -189,7 +211,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 reff = 0.0
                 typ = -1
                 si_scale = P.radius[i] if ri else P.radius[i] / T.radius[si]
-                _rot(P, i, Ri)
+                _unscaled(&rot[i, 0], si_scale, Ri)
                 if ri and rj:                  # two spheres: analytic
                     dist = sqrt(r2)
                     if dist == 0.0:
@@ -204,18 +226,22 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     npt = _sphere_poly(P, T, i, j, ri, &con[0])
                 else:
                     sj_scale = P.radius[j] / T.radius[sj]
-                    _rot(P, j, Rj)
-                    if boxes_apart(Ri, 1.0, &P.x[3 * i], &T.half[3 * si], si_scale,
-                                   Rj, 1.0, &P.x[3 * j], &T.half[3 * sj], sj_scale):
-                        continue
+                    _unscaled(&rot[j, 0], sj_scale, Rj)
                     polytope_ref(TT, si, &A)
                     polytope_ref(TT, sj, &B)
+                    # bounding boxes first, unless both are boxes (the query itself stops at a gap)
+                    if A.half == NULL or B.half == NULL:
+                        gap = boxes_gap(Ri, 1.0, &P.x[3 * i], &T.half[3 * si], si_scale,
+                                        Rj, 1.0, &P.x[3 * j], &T.half[3 * sj], sj_scale)
+                        if gap > 0.0:
+                            margin[k] = gap - MARGIN_SAFETY * rsum
+                            continue
                     # contacting features: the vertices within ftol of the deepest one along the normal,
                     # ftol = ftol_rel L + the overlap, i.e. every vertex inside the overlap slab
-                    npt = sat_penetration(&A, Ri, si_scale, &P.x[3 * i], &B, Rj, sj_scale, &P.x[3 * j], &sat)
-                    if npt:
-                        npt = contact_points(&A, Ri, si_scale, &P.x[3 * i], &B, Rj, sj_scale, &P.x[3 * j],
-                                             &sat, ftol_rel * rsum + sat.depth, &pc)
+                    npt = polytope_contact(&A, Ri, si_scale, &P.x[3 * i], &B, Rj, sj_scale, &P.x[3 * j],
+                                           ftol_rel * rsum, 1.0, &sat, &pc)
+                    if not npt:
+                        margin[k] = -sat.depth - MARGIN_SAFETY * rsum
                     typ = pc.type
                     for q in range(npt):
                         con[q].delta = pc.depth

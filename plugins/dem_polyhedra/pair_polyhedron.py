@@ -9,6 +9,7 @@ from dem.history import KeyedHistory
 from dem.pair import Pair
 from dem.shapes.topology import pack_topology
 from dem_contact.pair_coeffs import PairCoefficients
+from dem_convex import _pair_convex
 
 from . import _pair_polyhedron
 
@@ -84,6 +85,8 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         self.step_stats = np.zeros(len(_pair_polyhedron.STATS))
         self.npoints = 0
         self.contact_types = dict.fromkeys(TYPES, 0)
+        self.work = _pair_convex.ConvexWork()   # per-step poses and per-entry margins (as convex/gjk)
+        self.seen_build = self.seen_nall = -1
 
     @property
     def multipoint_average(self):
@@ -115,13 +118,22 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
 
     def _kernel(self, view, st, buffers, use_xi, advance):
         nb = self.sim.neighbor
+        w = self.work
         return lambda start: _pair_polyhedron.compute(
-            view, nb.offsets, nb.neigh, self.table, self.shape_view, self.topology, st, buffers, use_xi,
-            self.ftol, self.sim.update.dt, advance, _pair_polyhedron.LAWS[self.law], start)
+            view, nb.offsets, nb.neigh, self.table, self.shape_view, self.topology, w.rot, w.move, w.margin,
+            st, buffers, use_xi, self.ftol, self.sim.update.dt, advance, _pair_polyhedron.LAWS[self.law], start)
 
     def compute(self, advance=True):
         sim = self.sim
+        nb = sim.neighbor
+        w = self.work
+        nall = sim.atom.nall
+        reset = nb.nbuilds != self.seen_build or len(w.margin) != nb.nentries or nall != self.seen_nall
+        if reset:
+            self.seen_build, self.seen_nall = nb.nbuilds, nall
+            w.fit(nall, nb.nentries)
         view = ParticleView(sim.atom)
+        _pair_convex.poses(view, self.shape_view, w, reset)
         st = self.step_stats
         st[:] = 0.0
         if self.use_xi:
