@@ -1,7 +1,7 @@
 """Time per penetration query of two overlapping sharp polytopes: the separating-axis kernel
 (dem/contact/_polytope.pyx, depth only and depth + contact points) against dem's EPA (signed distance:
 GJK then EPA, dem.contact._gjk.distance_batch) and Coal's penetration (coal.distance on overlapping
-convexes), for two cubes and two 20-vertex polyhedra.
+convexes), for two cubes, two pinacoids (Descantes 2022) and two 20-vertex polyhedra.
 
     python benchmarks/polytope_vs_epa.py [--pairs 500] [--reps 20]
 
@@ -17,7 +17,7 @@ import numpy as np
 from dem import geometry as G
 from dem.contact import _gjk, _polytope
 from dem.contact.polytope import topology_view
-from dem.shapes import Polyhedron, ShapeTable, cube
+from dem.shapes import Polyhedron, ShapeTable, cube, pinacoid
 
 
 def poses(rng, A, B, m):
@@ -61,7 +61,9 @@ def main():
         import coal
     except ImportError:          # pragma: no cover
         coal = None
+    e = 0.5 ** 0.5        # Descantes' pinacoid, L = G = E = d / sqrt(2), alpha 60 deg (Table 1)
     cases = [("cube-cube", cube(1.0), cube(1.0)),
+             ("pinacoid-pinacoid", pinacoid(e, e, e), pinacoid(e, e, e)),
              ("poly20-poly20", Polyhedron(rng.normal(size=(20, 3))), Polyhedron(rng.normal(size=(20, 3))))]
     for name, A, B in cases:
         m = args.pairs
@@ -82,7 +84,7 @@ def main():
             guess = np.zeros((m, 3))
             _gjk.distance_batch(table, shape, x, quat, pi, pj, G.DEFAULT_TOL, guess, dist, pa, pb)
         t_epa = (time.perf_counter() - t0) / (args.reps * m)
-        line = "%-14s SAT depth %7.0f ns  SAT+points %7.0f ns  dem EPA %7.0f ns" % (
+        line = "%-18s SAT depth %7.0f ns  SAT+points %7.0f ns  dem EPA %7.0f ns" % (
             name, 1e9 * t_sat, 1e9 * t_pts, 1e9 * t_epa)
         if coal is not None:
             def conv(s):

@@ -51,6 +51,7 @@ cdef double SAT_TIE = 1e-12        # relative (to the bounding radii) tolerance 
 cdef double SAT_PARALLEL = 1e-12   # |sin| of two edges below which they are parallel (skipped)
 cdef double SAT_SMALLSIN = 1e-4    # below this |sin| an edge axis is evaluated from the full supports
 cdef enum:
+    EDGE_BUF = 256                 # edges of A pruned by the overlap slab in _sat_frame (a larger A pairs them all)
     SUPPORT_BUF = 256              # support values kept per body in _contact_frame (larger bodies recompute)
 cdef double HULL_TOL = 1e-12       # relative (to L) distance below which plane points coincide / are collinear
 
@@ -215,7 +216,7 @@ cdef int _sat_box(const Polytope* A, const Polytope* B, const Frame* F, double* 
     cdef double u[3]
     cdef double uE[3]
     cdef double w[3]
-    cdef double bestA = INFINITY, bestB = INFINITY, bestE = INFINITY, d, l2, tu, sgn, inv
+    cdef double bestA = INFINITY, bestB = INFINITY, bestE = INFINITY, d, l2, tu, sgn, inv, lim
     cdef int fa = -1, fb = -1, ea = -1, eb = -1, i, j, k, sd, i1, i2, j1, j2
     cdef const double* t = F.t
     cdef const double* M = F.M
@@ -253,7 +254,9 @@ cdef int _sat_box(const Polytope* A, const Polytope* B, const Frame* F, double* 
             if d < bestB - tie:
                 bestB = d
                 fb = 2 * j + sd
-    # edge directions u = e_i x M e_j (length sqrt(1 - M_ij^2)), oriented towards B
+    # edge directions u = e_i x M e_j (length sqrt(1 - M_ij^2)), oriented towards B; an edge value at or
+    # above the best face value cannot be chosen (faces win within the tie tolerance)
+    lim = bestA if bestA < bestB else bestB
     for j in range(3):
         j1 = (j + 1) % 3
         j2 = (j + 2) % 3
@@ -263,10 +266,12 @@ cdef int _sat_box(const Polytope* A, const Polytope* B, const Frame* F, double* 
             l2 = M[3 * i1 + j] * M[3 * i1 + j] + M[3 * i2 + j] * M[3 * i2 + j]
             if l2 <= SAT_PARALLEL * SAT_PARALLEL:
                 continue
-            inv = 1.0 / sqrt(l2)
             tu = t[i2] * M[3 * i1 + j] - t[i1] * M[3 * i2 + j]
-            d = (a[i1] * Ab[3 * i2 + j] + a[i2] * Ab[3 * i1 + j] + b[j1] * Ab[3 * i + j2] + b[j2] * Ab[3 * i + j1]
-                 - fabs(tu)) * inv
+            d = a[i1] * Ab[3 * i2 + j] + a[i2] * Ab[3 * i1 + j] + b[j1] * Ab[3 * i + j2] + b[j2] * Ab[3 * i + j1] - fabs(tu)
+            if d >= 0.0 and (d >= bestE or d >= lim):
+                continue               # |u| <= 1: d / |u| >= d cannot win (nor tie within the family)
+            inv = 1.0 / sqrt(l2)
+            d *= inv
             if d < 0.0 or d < bestE - tie:
                 sgn = inv if tu >= 0.0 else -inv
                 u[i] = 0.0
@@ -326,7 +331,10 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
     cdef const double* b
     cdef const double* va0
     cdef const double* va1
-    cdef double CBA, DBA, ADC, BDC, s2
+    cdef double CBA, DBA, ADC, BDC, s2, lim, slab, hwA, hwB, pa, pb
+    cdef double sw[3]              # the best face axis (the slab's direction)
+    cdef int cand[EDGE_BUF]
+    cdef int nca, ne_b, ii, k
     # faces of A: u = n_f, h_A(u) = sa d_f
     for f in range(A.nf):
         a = A.fnormal + 3 * f
@@ -353,21 +361,52 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
             uB[0] = w[0]
             uB[1] = w[1]
             uB[2] = w[2]
-    # edge pairs whose Gauss-map arcs cross: (a, b) of A against (c, d) = (-M n_f0, -M n_f1) of B
-    for j in range(B.ne):
+    # edge pairs whose Gauss-map arcs cross: (a, b) of A against (c, d) = (-M n_f0, -M n_f1) of B. A face
+    # axis with a value <= 0 separates the bodies: no edge pair is needed. Otherwise the depth delta is at
+    # most lim, the best face value, along the axis w (sw) with h_A(w) + h_B(-w) = lim; at the minimum facet
+    # the two edges touch once A is moved out by delta, so A's edge reaches w.x >= h_A(w) - lim - delta
+    # and B's edge w.x <= -h_B(-w) + lim + delta: only edges reaching into that slab (2 lim deep, plus the
+    # tie tolerance) are paired (exact; dense packings have shallow contacts, so few edges qualify)
+    if bestA <= bestB:
+        lim = bestA
+        sw[0], sw[1], sw[2] = uA[0], uA[1], uA[2]
+        hwA = F.sa * A.foffset[fa]
+    else:
+        lim = bestB
+        sw[0], sw[1], sw[2] = uB[0], uB[1], uB[2]
+        hwA = _hA(A, F.sa, sw)
+    ne_b = B.ne if lim > 0.0 else 0
+    slab = 2.0 * lim + 4.0 * tie
+    nca = 0
+    if ne_b and A.ne <= EDGE_BUF:         # (a larger A pairs all its edges)
+        for i in range(A.ne):
+            va0 = A.verts + 3 * A.edges[2 * i]
+            va1 = A.verts + 3 * A.edges[2 * i + 1]
+            pa = F.sa * _dot(sw, va0)
+            pb = F.sa * _dot(sw, va1)
+            if (pa if pa > pb else pb) >= hwA - slab:
+                cand[nca] = i
+                nca += 1
+    hwB = hwA - lim                       # -h_B(-w): B's lowest value along w
+    for j in range(ne_b):
+        _b_point(B, F, B.edges[2 * j], qb0)
+        _b_point(B, F, B.edges[2 * j + 1], qb1)
+        pa = _dot(sw, qb0)
+        pb = _dot(sw, qb1)
+        if (pa if pa < pb else pb) > hwB + slab:
+            continue
         _mul(F.M, B.fnormal + 3 * B.efaces[2 * j], c)
         _mul(F.M, B.fnormal + 3 * B.efaces[2 * j + 1], dd)
         for i in range(3):
             c[i] = -c[i]
             dd[i] = -dd[i]
         _cross(dd, c, DxC)
-        _b_point(B, F, B.edges[2 * j], qb0)
-        _b_point(B, F, B.edges[2 * j + 1], qb1)
         eB[0] = qb1[0] - qb0[0]
         eB[1] = qb1[1] - qb0[1]
         eB[2] = qb1[2] - qb0[2]
         eb2 = _dot(eB, eB)
-        for i in range(A.ne):
+        for ii in range(nca if A.ne <= EDGE_BUF else A.ne):
+            i = cand[ii] if A.ne <= EDGE_BUF else ii
             a = A.fnormal + 3 * A.efaces[2 * i]
             b = A.fnormal + 3 * A.efaces[2 * i + 1]
             ADC = _dot(a, DxC)
@@ -551,6 +590,7 @@ cdef int _clip_poly(const double* S, int ns, const double* C, int nc, double* ou
     returns the count written to out (room for ns + nc points)."""
     cdef double buf0[2 * (4 * POLY_MAXFEAT + 4)]
     cdef double buf1[2 * (4 * POLY_MAXFEAT + 4)]
+    cdef double dist[4 * POLY_MAXFEAT + 4]
     cdef double* src = buf0
     cdef double* dst = buf1
     cdef double* tmp
@@ -571,13 +611,16 @@ cdef int _clip_poly(const double* S, int ns, const double* C, int nc, double* ou
         if ln == 0.0:
             continue
         m = 0
+        # signed distances to the clip line, > 0 inside (left of c0 -> c1); inside within tol, the
+        # crossing on the line itself
+        for i in range(n):
+            p = src + 2 * i
+            dist[i] = (ex * (p[1] - c0[1]) - ey * (p[0] - c0[0])) / ln
         for i in range(n):
             p = src + 2 * i
             q = src + 2 * ((i + 1) % n)
-            # signed distances to the clip line, > 0 inside (left of c0 -> c1); inside within tol, the
-            # crossing on the line itself
-            dp = (ex * (p[1] - c0[1]) - ey * (p[0] - c0[0])) / ln
-            dq = (ex * (q[1] - c0[1]) - ey * (q[0] - c0[0])) / ln
+            dp = dist[i]
+            dq = dist[(i + 1) % n]
             if dp >= -tol:
                 dst[2 * m] = p[0]
                 dst[2 * m + 1] = p[1]
