@@ -1,11 +1,11 @@
 # cython: language_level=3
 """The one path from a contact record (dem/contact/record.pxd) to forces and torques, shared by every pair
-style and wall: the relative velocity of the two surfaces at the contact point, the Grains3D law
-(law.pxd) with its tangential history, the force on both bodies, the torques about both centres of mass,
+style and wall: the relative velocity of the two surfaces at the contact point, the law (law.pxd: Grains3D
+with its tangential history, or Descantes' eq. 3), the force on both bodies, the torques about both centres of mass,
 optional rolling resistance, all times the record's weight.
 
-A Body is one side of a contact. Pair styles call apply_pair, walls apply_wall, where the wall is the Body
-b: `v` is its velocity at the contact point and `w` its spin (for rolling resistance); it takes no force
+A Body is one side of a contact. Pair styles call apply_pair(_law), walls apply_wall(_law), where the wall
+is the Body b: `v` is its velocity at the contact point and `w` its spin (for rolling resistance); it takes no force
 (its x, f, t are not read). Both are one function, _apply, whose `wall` flag is a constant at each call.
 Rolling resistance acts when reff > 0 (spheres: R_eff; Grains3D applies none to shaped bodies)."""
 from dem._math cimport cross3
@@ -48,6 +48,14 @@ cdef inline double apply_wall(const double* c, const Contact* k, const Body* a, 
                               double reff, double* xi, double dt, bint advance, double* out) noexcept nogil:
     """apply_pair against a wall (m_ij = m, a's mass): only a takes the force and the torque."""
     return _apply(c, k, a, wall, m, reff, xi, dt, advance, out, True, 0)
+
+
+cdef inline double apply_wall_law(const double* c, const Contact* k, const Body* a, const Body* wall, double m,
+                                  double reff, double* xi, double dt, bint advance, double* out,
+                                  int law) noexcept nogil:
+    """apply_wall with the law `law` (law.pxd: LAW_GRAINS3D, i.e. apply_wall, or LAW_DESCANTES: no history,
+    xi is not read)."""
+    return _apply(c, k, a, wall, m, reff, xi, dt, advance, out, True, law)
 
 
 cdef inline double _apply(const double* c, const Contact* k, const Body* a, const Body* b, double meff,

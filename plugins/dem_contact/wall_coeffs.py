@@ -11,7 +11,8 @@ from . import EN, KN, KS, NCOEFF, XI_WIDTH, contact_time, frictionless, parse, r
 class WallCoefficients:
     """Mixin of a wall Fix. `self.table[w, t]` is the coefficient row (law.pxd reads it) of wall w and
     particle type t; `self.history()` the per-particle history array (XI_WIDTH values per wall and per piece of a glued
-    composite) or a dummy."""
+    composite) or a dummy. `self.contact_law`: "grains3d" (default) or "descantes" (no spring, no history)."""
+    contact_law = "grains3d"
 
     def parse_law(self, words):
         what = f"fix {self.id} {self.style}"
@@ -20,6 +21,9 @@ class WallCoefficients:
             raise DemError(f"{what}: give both kn and en (or neither, to use pair_coeff I I)")
         if frictionless(law):
             warn_frictionless(self.sim, self, what)
+        elif self.contact_law == "descantes" and law.get("mu", 0.0) > 0 and not law.get("gamma_t", 0.0) > 0:
+            self.sim.warning(f"{what}: law descantes has no tangential spring: with gamma_t = 0 the "
+                             f"tangential force is zero whatever mu and ks are (give gamma_t for friction)")
         self.law = law
 
     def init_table(self, nwalls):
@@ -34,7 +38,8 @@ class WallCoefficients:
             else:
                 raise DemError(f"fix {self.id} {self.style}: no coefficients given and no pair style to "
                                f"take them from")
-        self.use_history = bool(np.any(self.table[:, 1:, KS] > 0))
+        # Descantes' law (`law descantes` of the wall fixes) has no spring: no history
+        self.use_history = bool(np.any(self.table[:, 1:, KS] > 0)) and self.contact_law == "grains3d"
         if self.use_history:     # per wall and per piece of a composite (piece c of wall w: slot c nwalls + w)
             pieces = sim.shapes.max_components
             sim.atom.add_field(self.history_name, (XI_WIDTH * nwalls * pieces,), np.float64, 0.0)

@@ -35,8 +35,8 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
 
     `law descantes`: Descantes' eq. 3 at every point instead, F_n = max(0, kn delta - nu_n U_n) / alpha
     (no attraction; nu_n from en as in the Grains3D law) and F_t = -min(nu_t |U_t|, mu F_n) t / alpha
-    (viscous, nu_t = 2 gamma_t m_ij, capped by Coulomb; no spring: ks is not used, no history). Walls keep
-    their own law (Grains3D) with `point multipoint`.
+    (viscous, nu_t = 2 gamma_t m_ij, capped by Coulomb; no spring: ks is not used, no history). Walls choose
+    their own law: `fix ... wall/plane ... point multipoint law descantes` for the same law at the wall.
 
     With a tangential spring (ks > 0, law grains3d) every point keeps its own history, matched from step
     to step by its position in the body frame of the list's owner (not by index), so that it survives a

@@ -1,7 +1,8 @@
 # cython: language_level=3
 """The wall kernel of every wall fix (wall/plane, wall/drum): particles of a group against a set of
 surfaces (planes and the inside of cylinders, at rest or turning; dem/contact/_surface.pxd), one contact
-per particle and surface, the shared law (dem_contact/apply.pxd) with m_ij = m_i.
+per particle and surface, the shared law (dem_contact/apply.pxd: Grains3D, or Descantes' eq. 3 with the
+fixes' `law descantes`) with m_ij = m_i.
 
 Spheres: analytic, the contact point midway in the overlap, levers along the normal, rolling resistance
 (mu_roll r_i |F_n| against the spin relative to the wall). Shaped particles: their true body's deepest
@@ -19,8 +20,8 @@ from dem.contact._surface cimport (Surface, S_CYLINDER, S_A, S_SIDE, S_POS, S_R,
 from dem.shapes._support cimport ShapeRef, BOX, POLYHEDRON, MARGIN
 from dem.shapes._table cimport (ShapeView, TableView, body_ref, pose_body, round_body, ncomponents,
                                 component_row, pose_component)
-from dem_contact.apply cimport Body, apply_wall
-from dem_contact.law cimport XI_WIDTH, forget
+from dem_contact.apply cimport Body, apply_wall_law
+from dem_contact.law cimport XI_WIDTH, LAW_GRAINS3D, LAW_DESCANTES, forget
 
 ctypedef cnp.int64_t i64
 
@@ -38,6 +39,7 @@ cdef enum:                 # what the kernel sums into stats
 # the enums above, for Python (dem_walls.wall_fix)
 SURFACE = {"CYLINDER": S_CYLINDER, "A": S_A, "SIDE": S_SIDE, "POS": S_POS, "R": S_R, "CENTRE": S_CENTRE,
            "SPIN": S_SPIN, "OMEGA": S_OMEGA, "NCOL": S_NCOL}
+LAWS = {"grains3d": LAW_GRAINS3D, "descantes": LAW_DESCANTES}     # the `law` keyword of the wall fixes
 STAT = {"CONTACTS": W_CONTACTS, "MAXOV": W_MAXOV, "ENERGY": W_ENERGY, "TORQUE": W_TORQUE, "WORST_I": W_WORST_I,
         "WORST_W": W_WORST_W, "WORST_GAP": W_WORST_GAP, "BEHIND": W_BEHIND, "NSTAT": W_NSTAT}
 
@@ -92,14 +94,15 @@ cdef inline int _vertices_beyond(const ShapeRef* S, const double* R, const doubl
 
 def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const double[:, :, ::1] coeff,
           ShapeView shapes, double[:, ::1] xi, bint use_history, double dt, bint advance, int point,
-          bint average, double[::1] stats):
+          bint average, int law, double[::1] stats):
     """surfaces: rows of S_NCOL values (SURFACE). coeff[w, type]: the law row of surface w. xi: XI_WIDTH
     history values per surface and piece per particle (piece c of surface w at XI_WIDTH (c nw + w); pieces
     beyond the array's width keep no spring). point: 0 the deepest point, 1 the centroid of the candidate
     points beyond the surface, 2 multipoint: a polytope (box, polyhedron) touches at every vertex beyond
     the surface, each with the deepest overlap and a weight 1/alpha, alpha the particle's points against
     that surface (Descantes 2022 eq. 3; no tangential spring: the points are not tracked). average: Model B
-    over the pieces touching one surface. stats: the W_ sums (STAT)."""
+    over the pieces touching one surface. law: LAWS (the Grains3D law, or Descantes' eq. 3 at every point: no
+spring, xi not read). stats: the W_ sums (STAT)."""
     cdef Particles particles = view.p          # local copies: no call can change them (kept in registers)
     cdef const Particles* P = &particles
     cdef TableView table = shapes.t
@@ -236,10 +239,11 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
                     A.f = &P.f[3 * i]
                     A.t = &P.torque[3 * i]
                     cf = &coeff[w, P.type[i], 0]
-                    energy += apply_wall(cf, &con, &A, &B, P.rmass[i] if average or npt == 1 else P.rmass[i] / npt,
-                                        P.radius[i] if sphere else 0.0,
-                                        &xi[i, XI_WIDTH * (ptc[q] * nw + w)] if 0 <= ptc[q] < hpieces else NULL,
-                                        dt, advance, out)
+                    energy += apply_wall_law(cf, &con, &A, &B,
+                                             P.rmass[i] if average or npt == 1 else P.rmass[i] / npt,
+                                             P.radius[i] if sphere else 0.0,
+                                             &xi[i, XI_WIDTH * (ptc[q] * nw + w)] if 0 <= ptc[q] < hpieces else NULL,
+                                             dt, advance, out, law)
                     if W.spin >= 0:   # torque about the turning axis: e . (p x F) + e . rolling torque
                         torque += p[(W.spin + 1) % 3] * out[(W.spin + 2) % 3] - p[(W.spin + 2) % 3] * out[(W.spin + 1) % 3]
                         torque += out[3 + W.spin]

@@ -8,14 +8,15 @@ from dem.args import Args
 from dem.errors import did_you_mean
 from dem.fix import Fix, Stage
 
-from .wall_fix import POINT_MODES, WallFix, cylinder, plane, turning
+from .wall_fix import POINT_MODES, WallFix, cylinder, law_name, plane, turning
 
 RPM = 2.0 * math.pi / 60.0
 
 
 class FixWallDrum(WallFix, Fix):
     """fix ID group wall/drum AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate]
-        [point deepest|centroid|multipoint] [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
+        [point deepest|centroid|multipoint] [law grains3d|descantes]
+        [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
 
     A rotating cylindrical wall (a drum) with the particles inside. AXIS is x, y or z; the axis passes
     through (C1, C2) in the two other coordinates, in x, y, z order (as `region cylinder`); RADIUS is the
@@ -41,7 +42,9 @@ class FixWallDrum(WallFix, Fix):
     contact point at the depth-weighted centroid of the body's vertices beyond the wall instead (as
     `fix wall/plane`): a flat face on the curved drum touches along two edges, and one arbitrary corner
     would rock the particle. `point multipoint`: a polytope touches at every vertex beyond the wall, the
-    deepest overlap shared and the force divided by their number, as `fix wall/plane`.
+    deepest overlap shared and the force divided by their number, as `fix wall/plane`. `law descantes`:
+    Descantes' eq. 3 at every contact point instead of the Grains3D law (no attraction, viscous friction
+    capped by Coulomb against the moving wall, no spring), as `fix wall/plane`.
 
     Redefining the fix (same ID, e.g. `rpm 0` to fill, then `rpm 40` to rotate) keeps the drum angle;
     the ramp starts again from the redefinition. Global state kept for restarts: the drum angle and the
@@ -58,7 +61,7 @@ class FixWallDrum(WallFix, Fix):
     style = "wall/drum"
     stages = Stage.POST_FORCE | Stage.END_OF_STEP
     usage = ("AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate] [point deepest|centroid|multipoint] "
-             "[kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]")
+             "[law grains3d|descantes] [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]")
 
     def __init__(self, sim, fid, group, args):
         super().__init__(sim, fid, group, args)
@@ -99,11 +102,14 @@ class FixWallDrum(WallFix, Fix):
                     raise a.error(f"point must be {', '.join(POINT_MODES)}, got '{a[i + 1]}'")
                 self.point = POINT_MODES.index(a[i + 1])
                 i += 2
+            elif key == "law":
+                self.contact_law = law_name(a[i + 1], f"fix {fid} wall/drum")
+                i += 2
             elif key in dem_contact.KEYWORDS:
                 law += a.words[i:i + 2]
                 i += 2
             else:
-                known = ["rpm", "omega", "ramp", "ends", "point"] + list(dem_contact.KEYWORDS)
+                known = ["rpm", "omega", "ramp", "ends", "point", "law"] + list(dem_contact.KEYWORDS)
                 raise a.error(f"unknown keyword '{key}'{did_you_mean(key, known)}")
         self.parse_law(law)
         self.nwalls = 1 + (2 if self.ends else 0)

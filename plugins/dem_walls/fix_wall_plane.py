@@ -5,12 +5,12 @@ from dem.args import number
 from dem.errors import DemError
 from dem.fix import Fix, Stage
 
-from .wall_fix import POINT_MODES, S, WallFix, plane
+from .wall_fix import POINT_MODES, S, WallFix, law_name, plane
 
 
 class FixWallPlane(WallFix, Fix):
     """fix ID group wall/plane xplane|yplane|zplane LO HI [...] [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
-        [point deepest|centroid|multipoint]
+        [point deepest|centroid|multipoint] [law grains3d|descantes]
 
     Fixed planar walls. Each `xplane LO HI` adds a wall at x = LO facing +x and one at x = HI facing -x;
     NULL skips one (`zplane 0 NULL`: a floor only). Particles touching a wall feel the Grains3D law with
@@ -26,6 +26,12 @@ class FixWallPlane(WallFix, Fix):
     polyhedron touches at every vertex below the wall (a cube lying flat: its 4 corners, an edge: its 2
     ends), each point with the deepest overlap and the force divided by their number (Descantes 2022
     eq. 3); no tangential spring at those points (curved bodies keep their one point and spring).
+    `law descantes` (default `law grains3d`): Descantes' eq. 3 at every contact point of this wall instead
+    of the Grains3D law, as `pair_style polyhedron/multipoint law descantes` (the same function,
+    dem_contact/law.pxd): F_n = max(0, kn delta - nu_n U_n) / alpha (no attraction, nu_n from en with
+    m_ij = m_i), F_t = -min(nu_t |U_t|, mu F_n) t / alpha (viscous, nu_t = 2 gamma_t m_i, capped by
+    Coulomb: give gamma_t for friction), no spring (ks unused, no history); alpha = the points of
+    `point multipoint`, 1 otherwise. The wall's law is chosen here, not taken from the pair style.
     Glued composites (pair_style glued/convex) touch with each component, Model A/B as the pair style.
     Coefficients: given here for every type, or, when left out, those of each type with itself from
     pair_coeff. Example: `fix floor all wall/plane zplane 0.0 NULL kn 1000 en 0.5 mu 0.5 ks 285.7`."""
@@ -63,6 +69,10 @@ class FixWallPlane(WallFix, Fix):
             if k + 1 >= len(rest) or rest[k + 1] not in POINT_MODES:
                 raise DemError(f"fix {fid} wall/plane: point must be {', '.join(POINT_MODES)}")
             self.point = POINT_MODES.index(rest[k + 1])
+            del rest[k:k + 2]
+        if "law" in rest:
+            k = rest.index("law")
+            self.contact_law = law_name(rest[k + 1] if k + 1 < len(rest) else "", f"fix {fid} wall/plane")
             del rest[k:k + 2]
         args = args[:i] + rest
         self.table_rows = np.array([plane(*w) for w in zip(axes, positions, sides)])

@@ -4,6 +4,7 @@ import numpy as np
 
 from dem import shape_command
 from dem._particles import ParticleView
+from dem.errors import DemError
 from dem_contact.wall_coeffs import WallCoefficients
 
 from . import _walls
@@ -34,12 +35,21 @@ def turning(row, axis, centre, omega):
 
 
 POINT_MODES = ("deepest", "centroid", "multipoint")   # `point` keyword of the wall fixes (kernel's `point`)
+LAWS = tuple(_walls.LAWS)                              # `law` keyword of the wall fixes: grains3d, descantes
+
+
+def law_name(word, what):
+    """The `law` keyword's value checked: one of LAWS (DemError naming the fix otherwise)."""
+    if word not in LAWS:
+        raise DemError(f"{what}: law must be {' or '.join(LAWS)}, got '{word}'")
+    return word
 
 
 class WallFix(WallCoefficients):
     """Mixin of a wall Fix: `surfaces()` returns the current table (one row per surface, the same count as
     the coefficient table's walls); `self.point` (an index of POINT_MODES) chooses the contact point(s) of
-    shaped particles."""
+    shaped particles; `self.contact_law` (one of LAWS, default grains3d) the law at every contact point:
+    `descantes` is Descantes' eq. 3 of the shared law (dem_contact/law.pxd; no spring, no history)."""
     point = 0
 
     def init_walls(self, nwalls):
@@ -53,7 +63,8 @@ class WallFix(WallCoefficients):
         sim = self.sim
         _walls.walls(ParticleView(sim.atom), int(self.groupbit), self.surfaces(), self.table, self.shape_view,
                      self.history(), self.use_history, sim.update.dt, advance, self.point,
-                     bool(getattr(sim.pair, "multipoint_average", True)), self.stats)
+                     bool(getattr(sim.pair, "multipoint_average", True)), _walls.LAWS[self.contact_law],
+                     self.stats)
         self.ncontacts = int(self.stats[STAT["CONTACTS"]])
         self.max_overlap = float(self.stats[STAT["MAXOV"]])
         self.energy = float(self.stats[STAT["ENERGY"]])
