@@ -1,12 +1,13 @@
 # cython: language_level=3
 """nogil penetration depth, normal and multipoint contact of two posed sharp convex polytopes (no crust).
 
-A body is a Polytope (its topology in the body frame, from dem/shapes/topology.py through a TopoTable row,
-`polytope_ref`) posed by a pure rotation R (row-major, body -> world), a uniform scale s and the position
+A body is a Polytope (its topology in the body frame, from dem/shapes/topology.py through a TopoTable row:
+the shape table's `TableView.topo`, dem/shapes/_table.pxd; `polytope_ref`) posed by a pure rotation R (row-major, body -> world), a uniform scale s and the position
 x of its centre of mass: world point = x + s R v. Normals point from B to A, as in the contact record
 (dem/contact/record.pxd). See _polytope.pyx for the algorithms.
 """
 cimport numpy as cnp
+from dem.shapes._table cimport TopoTable
 
 ctypedef cnp.int64_t i64
 
@@ -41,27 +42,6 @@ cdef struct Polytope:      # one body's topology in its body frame (all ids loca
     const int* edges       # 2 ne: vertex ids (v0, v1)
     const int* efaces      # 2 ne: face f0 (runs v0 -> v1), face f1 (runs v1 -> v0)
     const double* half     # 3: half sides when laid out as topology.box_topology's (the box path), else NULL
-
-cdef struct TopoTable:     # pack_topology's arrays (dem/shapes/topology.py) as pointers
-    int nrows
-    const int* poly
-    const i64* voff
-    const int* nv
-    const i64* foff
-    const int* nf
-    const i64* eoff
-    const int* ne
-    const i64* fvoff
-    const double* radius
-    const double* verts
-    const double* face_normal
-    const double* face_offset
-    const int* face_first
-    const int* face_count
-    const int* face_verts
-    const int* edge_verts
-    const int* edge_faces
-    const double* box_half # 3 nrows, zeros on rows that are not boxes
 
 cdef class TopologyView:
     cdef TopoTable t

@@ -46,6 +46,7 @@ import numpy as np
 from libc.math cimport sqrt, fabs, INFINITY
 
 from dem.shapes._support cimport quat_to_rot
+from dem.shapes._table cimport topology_pointers
 
 cdef double SAT_TIE = 1e-12        # relative (to the bounding radii) tolerance of axis ties
 cdef double SAT_PARALLEL = 1e-12   # |sin| of two edges below which they are parallel (skipped)
@@ -55,47 +56,15 @@ cdef enum:
     SUPPORT_BUF = 256              # support values kept per body in _contact_frame (larger bodies recompute)
 cdef double HULL_TOL = 1e-12       # relative (to L) distance below which plane points coincide / are collinear
 
-COLUMNS = ("poly", "voff", "nv", "foff", "nf", "eoff", "ne", "fvoff", "radius", "verts", "face_normal",
-           "face_offset", "face_first", "face_count", "face_verts", "edge_verts", "edge_faces", "box_half")
 MAXP = POLY_MAXP
 
 
 cdef class TopologyView:
-    """The arrays of dem.shapes.topology.pack_topology behind one TopoTable struct."""
+    """The arrays of dem.shapes.topology.pack_topology behind one TopoTable struct (tests and tools: the
+    kernels read the shape table's, TableView.topo)."""
 
     def __cinit__(self, dict arrays):
-        a = {k: np.ascontiguousarray(arrays[k]) for k in COLUMNS}
-        a["voff"], a["foff"], a["eoff"], a["fvoff"] = (a[k].astype(np.int64) for k in ("voff", "foff", "eoff", "fvoff"))
-        for k in ("poly", "nv", "nf", "ne", "face_first", "face_count", "face_verts", "edge_verts", "edge_faces"):
-            a[k] = np.ascontiguousarray(a[k], np.int32).reshape(-1)
-        for k in ("radius", "verts", "face_normal", "face_offset", "box_half"):
-            a[k] = np.ascontiguousarray(a[k], float).reshape(-1)
-        cdef const int[::1] poly = a["poly"], nv = a["nv"], nf = a["nf"], ne = a["ne"]
-        cdef const int[::1] ff = a["face_first"], fc = a["face_count"], fv = a["face_verts"]
-        cdef const int[::1] ev = a["edge_verts"], ef = a["edge_faces"]
-        cdef const i64[::1] voff = a["voff"], foff = a["foff"], eoff = a["eoff"], fvoff = a["fvoff"]
-        cdef const double[::1] radius = a["radius"], verts = a["verts"], fn = a["face_normal"]
-        cdef const double[::1] fo = a["face_offset"], bh = a["box_half"]
-        self.arrays = a
-        self.t.nrows = <int>poly.shape[0]
-        self.t.poly = &poly[0]
-        self.t.voff = &voff[0]
-        self.t.nv = &nv[0]
-        self.t.foff = &foff[0]
-        self.t.nf = &nf[0]
-        self.t.eoff = &eoff[0]
-        self.t.ne = &ne[0]
-        self.t.fvoff = &fvoff[0]
-        self.t.radius = &radius[0]
-        self.t.verts = &verts[0]
-        self.t.face_normal = &fn[0]
-        self.t.face_offset = &fo[0]
-        self.t.face_first = &ff[0]
-        self.t.face_count = &fc[0]
-        self.t.face_verts = &fv[0]
-        self.t.edge_verts = &ev[0]
-        self.t.edge_faces = &ef[0]
-        self.t.box_half = &bh[0]
+        self.arrays = topology_pointers(arrays, &self.t)
 
     @property
     def nrows(self):

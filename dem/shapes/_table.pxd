@@ -10,8 +10,9 @@ them from `comp_first[s]` in the component arrays, `comp_row[c]` the component's
 its rotation (row-major) and offset in the composite's body frame at scale 1 (see table.py). Every other
 row has comp_count 0: it is its own single component (`ncomponents`, `component_row`, `pose_component`).
 
-Planned: a polyhedron adds its faces and edges as offsets and counts into shared face/edge arrays, as
-the vertices are today."""
+A sharp polytope row (box, cube, polyhedron, tetrahedron, pinacoid) also has its topology in `topo`
+(TopoTable: faces, edges and adjacency, dem/shapes/topology.py pack_topology, row for row): offsets and
+counts into shared face and edge arrays, as the vertices; `topo.poly[s]` is 0 on the other rows."""
 cimport numpy as cnp
 from dem.shapes._support cimport ShapeRef, NPARAM, quat_to_rot
 
@@ -19,6 +20,28 @@ ctypedef cnp.int64_t i64
 
 cdef enum:
     COMP_POSE = 12         # values of a component pose: rotation (9, row-major) then offset (3)
+
+
+cdef struct TopoTable:     # pack_topology's arrays (dem/shapes/topology.py) as pointers, row for row
+    int nrows
+    const int* poly
+    const i64* voff
+    const int* nv
+    const i64* foff
+    const int* nf
+    const i64* eoff
+    const int* ne
+    const i64* fvoff
+    const double* radius
+    const double* verts
+    const double* face_normal
+    const double* face_offset
+    const int* face_first
+    const int* face_count
+    const int* face_verts
+    const int* edge_verts
+    const int* edge_faces
+    const double* box_half # 3 nrows, zeros on rows that are not boxes
 
 
 cdef struct TableView:
@@ -41,6 +64,10 @@ cdef struct TableView:
     const int* comp_row
     const double* comp_pose
     const double* half         # half sides of a centred bounding box on the body axes, at scale 1 (3 per row)
+    TopoTable topo             # the polytope rows' topology
+
+
+cdef dict topology_pointers(dict packed, TopoTable* t)
 
 
 cdef class ShapeView:

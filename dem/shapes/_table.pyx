@@ -6,11 +6,51 @@ COLUMNS = ("kind", "params", "voff", "nv", "core_kind", "core_params", "core_vof
            "radius", "is_sphere", "verts", "comp_first", "comp_count", "comp_row", "comp_pose",
            "half")
 COMPONENT_POSE = COMP_POSE            # (for Python: table.py)
+TOPOLOGY_COLUMNS = ("poly", "voff", "nv", "foff", "nf", "eoff", "ne", "fvoff", "radius", "verts", "face_normal",
+                    "face_offset", "face_first", "face_count", "face_verts", "edge_verts", "edge_faces", "box_half")
+
+
+cdef dict topology_pointers(dict packed, TopoTable* t):
+    """Points t at the arrays of pack_topology (made contiguous and typed); returns them (keep them alive)."""
+    a = {k: np.ascontiguousarray(packed[k]) for k in TOPOLOGY_COLUMNS}
+    for k in ("voff", "foff", "eoff", "fvoff"):
+        a[k] = a[k].astype(np.int64)
+    for k in ("poly", "nv", "nf", "ne", "face_first", "face_count", "face_verts", "edge_verts", "edge_faces"):
+        a[k] = np.ascontiguousarray(a[k], np.int32).reshape(-1)
+    for k in ("radius", "verts", "face_normal", "face_offset", "box_half"):
+        a[k] = np.ascontiguousarray(a[k], float).reshape(-1)
+    cdef const int[::1] poly = a["poly"], nv = a["nv"], nf = a["nf"], ne = a["ne"]
+    cdef const int[::1] ff = a["face_first"], fc = a["face_count"], fv = a["face_verts"]
+    cdef const int[::1] ev = a["edge_verts"], ef = a["edge_faces"]
+    cdef const i64[::1] voff = a["voff"], foff = a["foff"], eoff = a["eoff"], fvoff = a["fvoff"]
+    cdef const double[::1] radius = a["radius"], verts = a["verts"], fn = a["face_normal"]
+    cdef const double[::1] fo = a["face_offset"], bh = a["box_half"]
+    t.nrows = <int>poly.shape[0]
+    t.poly = &poly[0]
+    t.voff = &voff[0]
+    t.nv = &nv[0]
+    t.foff = &foff[0]
+    t.nf = &nf[0]
+    t.eoff = &eoff[0]
+    t.ne = &ne[0]
+    t.fvoff = &fvoff[0]
+    t.radius = &radius[0]
+    t.verts = &verts[0]
+    t.face_normal = &fn[0]
+    t.face_offset = &fo[0]
+    t.face_first = &ff[0]
+    t.face_count = &fc[0]
+    t.face_verts = &fv[0]
+    t.edge_verts = &ev[0]
+    t.edge_faces = &ef[0]
+    t.box_half = &bh[0]
+    return a
 
 
 cdef class ShapeView:
     """Built from the arrays of ShapeTable.kernel_arrays() (or the one-row dummy of an empty table); the
-    composite columns may be left out (a table without composites)."""
+    composite columns and the topology (`topology`: pack_topology's dict) may be left out (a table without
+    composites, without polytopes)."""
 
     def __cinit__(self, dict arrays):
         n = len(arrays["kind"])
@@ -44,6 +84,11 @@ cdef class ShapeView:
         self.t.comp_row = &comp_row[0]
         self.t.comp_pose = &comp_pose[0, 0]
         self.t.half = &half[0, 0]
+        if "topology" in arrays:
+            a["topology"] = topology_pointers(arrays["topology"], &self.t.topo)
+        else:
+            from .topology import pack_topology
+            a["topology"] = topology_pointers(pack_topology([None] * n), &self.t.topo)
 
     def __len__(self):
         return self.t.nrows

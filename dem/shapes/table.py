@@ -10,11 +10,16 @@ rows of the shapes given (whose indices particles store, and which never move). 
 them: ``comp_first``/``comp_count`` into the component arrays ``comp_row`` (the component's own row) and
 ``comp_pose`` (its rotation, row-major, then its offset: the pose in the composite's body frame at scale
 1). Every other row has ``comp_count`` 0.
+
+Polytope rows (box, cube, polyhedron, tetrahedron, pinacoid) carry their faces, edges and adjacency
+(dem/shapes/topology.py ``pack_topology``, row for row) in ``kernel_arrays()["topology"]``: the kernels'
+``TableView.topo``.
 """
 import numpy as np
 
 from ._table import COMPONENT_POSE as COMP_POSE, ShapeView
 from .base import GLUED, NPARAM, SPHERE
+from .topology import pack_topology
 
 
 class ShapeTable:
@@ -87,6 +92,7 @@ class ShapeTable:
         a["is_sphere"] = self.is_sphere.astype(np.int32)
         a.update(comp_first=self.comp_first, comp_count=self.comp_count, comp_row=self.comp_row,
                  comp_pose=self.comp_pose, half=self.half)
+        topology = pack_topology(self.rows if len(self) else [None])
         if not len(self):
             a.update(kind=np.zeros(1, np.int32), params=np.zeros((1, NPARAM)), voff=np.zeros(1, np.int64),
                      nv=np.zeros(1, np.int32), core_kind=np.zeros(1, np.int32), core_params=np.zeros((1, NPARAM)),
@@ -94,7 +100,9 @@ class ShapeTable:
                      radius=np.ones(1), crust_rel=np.zeros(1), is_sphere=np.ones(1, np.int32),
                      comp_first=np.full(1, -1, np.int32), comp_count=np.zeros(1, np.int32),
                      half=np.zeros((1, 3)))
-        return {k: np.ascontiguousarray(v) for k, v in a.items()}
+        a = {k: np.ascontiguousarray(v) for k, v in a.items()}
+        a["topology"] = topology          # faces, edges (the polytope rows; _table.pxd TopoTable)
+        return a
 
     def view(self):
         """The table as kernels take it (one TableView struct, dem/shapes/_table.pxd), built once."""

@@ -31,7 +31,7 @@ from dem._particles cimport ParticleView, Particles
 from dem.contact.record cimport Contact
 from dem.contact._bounds cimport boxes_gap
 from dem.contact._gjk cimport crust_contact, CONTACT_NONE, NFEAT
-from dem.contact._polytope cimport (Polytope, TopoTable, TopologyView, SatResult, PolyContact, polytope_ref,
+from dem.contact._polytope cimport (Polytope, TopoTable, SatResult, PolyContact, polytope_ref,
                                     polytope_contact, POLY_MAXP,
                                     PC_FACE_FACE)
 from dem.shapes._support cimport ShapeRef, Kind, quat_to_rot, NPARAM
@@ -151,7 +151,7 @@ cdef inline i64 _match(const KeyedView* h, i64 k, const double* b, double tol2, 
 
 
 def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, const double[:, :, ::1] coeff,
-            ShapeView shapes, TopologyView topo, const double[:, ::1] rot, const double[::1] move,
+            ShapeView shapes, const double[:, ::1] rot, const double[::1] move,
             double[::1] margin, double[::1] stats, KeyedBuffers hist, bint use_xi, double ftol_rel, double dt,
             bint advance, int law, i64 start):
     """Adds the contact forces and torques of list entries from `start` on; returns -1, or the entry to
@@ -167,7 +167,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
     cdef const Particles* P = &particles
     cdef TableView table = shapes.t
     cdef const TableView* T = &table
-    cdef const TopoTable* TT = &topo.t
+    cdef const TopoTable* TT = &T.topo
     cdef KeyedView* h = &hist.view
     cdef int i, j, d, q, npt, si, sj, typ
     cdef i64 k, r, resume = -1, fresh

@@ -3,11 +3,9 @@ import numpy as np
 
 from dem import shape_command
 from dem._particles import ParticleView
-from dem.contact import _polytope
 from dem.errors import DemError
 from dem.history import KeyedHistory
 from dem.pair import Pair
-from dem.shapes.topology import pack_topology
 from dem_contact.pair_coeffs import PairCoefficients
 from dem_convex import _pair_convex
 
@@ -42,8 +40,8 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
     to step by its position in the body frame of the list's owner (not by index), so that it survives a
     face/face contact turning edge/face and back (dem_polyhedra/_pair_polyhedron.pyx). Other shapes
     (curved bodies, glued composites) are refused. Particles with a shape need `fix ID group nve/shape`;
-    walls touch polytopes at every vertex with `fix ... wall/plane ... point multipoint`. The shape table
-    has no topology yet: this style packs it from the table's rows at init. After each step (Python):
+    walls touch polytopes at every vertex with `fix ... wall/plane ... point multipoint`. Faces and edges
+    come from the shape table (dem/shapes/topology.py). After each step (Python):
     `ncontacts` (pairs), `npoints`, `contact_types` (pairs per type: vertex_face, edge_edge, edge_face,
     face_face, sphere); `stats` sums them over the run, with `face_face_points`.
 
@@ -99,16 +97,14 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         atom = sim.atom
         self.shape_view = shape_command.pair_shape_view(sim)
         rows = sim.shapes.rows
-        # the shape table has no topology yet: packed here, row for row (dem/shapes/topology.py)
-        packed = pack_topology(rows)
-        self.topology = _polytope.TopologyView(packed)
+        poly = self.shape_view.arrays["topology"]["poly"]       # polytope rows (dem/shapes/topology.py)
         used = np.unique(atom.data["shape"][:atom.nlocal])
         sphere = self.shape_view.arrays["is_sphere"] if "is_sphere" in self.shape_view.arrays else None
         for s in used:
             if s < 0:
                 continue
             shp = rows[s]
-            if packed["poly"][s] or (sphere is not None and sphere[s]):
+            if poly[s] or (sphere is not None and sphere[s]):
                 continue
             raise DemError(f"pair_style polyhedron/multipoint: shape '{getattr(shp, 'name', s)}' is neither a "
                            "sharp polytope (box, cube, polyhedron, tetrahedron, pinacoid) nor a sphere")
@@ -120,7 +116,7 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         nb = self.sim.neighbor
         w = self.work
         return lambda start: _pair_polyhedron.compute(
-            view, nb.offsets, nb.neigh, self.table, self.shape_view, self.topology, w.rot, w.move, w.margin,
+            view, nb.offsets, nb.neigh, self.table, self.shape_view, w.rot, w.move, w.margin,
             st, buffers, use_xi, self.ftol, self.sim.update.dt, advance, _pair_polyhedron.LAWS[self.law], start)
 
     def compute(self, advance=True):
