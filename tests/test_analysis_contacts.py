@@ -167,3 +167,42 @@ def test_bad_input():
     sim.command("compute s all stress")
     with pytest.raises(DemError, match="filled by the force evaluation"):
         sim.computes["s"].vector()
+
+
+LATTICE = """units si
+boundary p p p
+processors * 1 1
+region box block 0 3.996 0 4.8 0 4.8
+create_box 1 box
+shape c cube 1
+{atoms}
+pair_style polyhedron/multipoint
+pair_coeff * * kn 1e3 en 0.5
+timestep 1e-4
+compute z all contact/types
+compute s all stress
+thermo_style custom step c_z[3] c_z[4] c_s[1] c_s[2] c_s[3] c_s[4]
+thermo_modify format float %.17g
+run 0
+"""
+
+
+def test_lattice_on_one_and_two_ranks(tmp_path):
+    """4^3 unit cubes on a periodic lattice, spacing 0.999 along x and 1.2 along y and z: rows of cubes
+    pressed face to face, delta = 1e-3, a quarter of the contacts through periodic images: z_t = 2,
+    z_iso = 6 exactly, sigma_xx = 64 kn delta 0.999 / V (64 contacts, branch 0.999), sigma_yy and shear 0,
+    to round-off (bound 1e-9), on 1 rank and on 2 (cut across x, the contact direction: ghost tallies
+    come back to their owners on the other rank through the MPI reverse communication)."""
+    from test_mpi import MPIEXEC, run_dem, thermo_rows
+    expect = 64 * KN * 1e-3 * 0.999 / (3.996 * 4.8 * 4.8)
+    atoms = "\n".join(f"create_atoms 1 single {float((i + 0.5) * 0.999)!r} {float((j + 0.5) * 1.2)!r} "
+                      f"{float((k + 0.5) * 1.2)!r} shape c density 1"
+                      for i in range(4) for j in range(4) for k in range(4))
+    for nprocs in (1, 2):
+        if nprocs == 2 and MPIEXEC is None:
+            pytest.skip("mpiexec not found")
+        run_dem(tmp_path, LATTICE.format(atoms=atoms), nprocs, f"log.{nprocs}")
+        row = [float(w) for w in thermo_rows(tmp_path / f"log.{nprocs}")[-1]]
+        assert row[1:3] == [2.0, 6.0]
+        assert row[3] == pytest.approx(expect, rel=1e-9)
+        assert max(abs(r) for r in row[4:7]) < 1e-9 * expect
