@@ -27,10 +27,12 @@ class Tally:
         self.active = ()          # field names in use, in FIELDS order
         self.filled_at = None     # (ntimestep, first_step) of the last force evaluation that filled them
 
+    def _users(self):
+        return list(self.sim.computes.values()) + list(self.sim.modify.fixes)
+
     def wanted(self):
-        sim = self.sim
         want = set()
-        for obj in list(sim.computes.values()) + list(sim.modify.fixes):
+        for obj in self._users():
             want.update(obj.tallies)
         return [k for k in FIELDS if k in want]
 
@@ -41,12 +43,11 @@ class Tally:
         pair = sim.pair
         for k in want:
             if pair is None or k not in pair.tallies:
-                users = [f"{o.kind} {o.id} ({o.style})" for o in list(sim.computes.values()) + list(sim.modify.fixes)
-                         if k in o.tallies]
+                users = [f"{o.kind} {o.id} ({o.style})" for o in self._users() if k in o.tallies]
                 style = "no pair style" if pair is None else f"pair_style {pair.style}"
+                has = f" (it provides: {', '.join(pair.tallies)})" if pair is not None and pair.tallies else ""
                 raise DemError(f"{', '.join(users)} need(s) the per-particle contact {k} tally, which {style} does "
-                               f"not provide" + (f" (it provides: {', '.join(pair.tallies)})" if pair is not None and
-                                                 pair.tallies else ""))
+                               f"not provide{has}")
         for k, (name, width) in FIELDS.items():
             if k in want:
                 sim.atom.add_field(name, (width,), float, 0.0, border=False)

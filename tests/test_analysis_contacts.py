@@ -60,7 +60,7 @@ compute zt all contact/types region top
     q[3] = [np.cos(np.pi / 8), np.sin(np.pi / 8), 0.0, 0.0]       # 45 deg about x: an edge down
     q[5] = _quat_to([1.0, 1.0, 1.0])                             # a body diagonal down: a vertex
     sim.run(0)
-    assert sim.pair.contact_types == {"vertex_face": 1, "edge_edge": 0, "edge_face": 1, "face_face": 1, "sphere": 0}
+    assert sim.pair.contact_types == dict(vertex_face=1, edge_edge=0, edge_face=1, face_face=1, sphere=0)
     v = sim.computes["z"].vector()
     third = 1.0 / 3.0
     assert v == pytest.approx([third, third, third, 2.0, 1.0, third, third, third, 6, 6], rel=1e-14)

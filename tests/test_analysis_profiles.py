@@ -12,6 +12,10 @@ GAMMA = 3.0       # shear rate of the imposed field (1/s)
 U = 0.2           # velocity fluctuation (m/s)
 
 
+def site(*x):
+    return " ".join(repr(float(c)) for c in x)
+
+
 def sphere_lattice(path, values, extra=""):
     """4 x 4 x 8 spheres of radius 0.3 B on a simple cubic lattice of spacing B (centres at (i + 1/2) B),
     vx = GAMMA z, vy = +U or -U alternately in each layer (8 of each), no contact; a run of one step
@@ -22,7 +26,7 @@ def sphere_lattice(path, values, extra=""):
             for k in range(8):
                 x, y, z = (np.array([i, j, k]) + 0.5) * B
                 vy = U if (i + j) % 2 else -U
-                lines.append(f"create_atoms 1 single {float(x)!r} {float(y)!r} {float(z)!r} radius {0.3 * B} density 2500 "
+                lines.append(f"create_atoms 1 single {site(x, y, z)} radius {0.3 * B} density 2500 "
                              f"v {float(GAMMA * z)!r} {float(vy)!r} 0")
     sim = dem.Simulation(screen=False)
     sim.commands(f"""units si
@@ -79,10 +83,10 @@ def test_solid_fraction_of_a_cube_lattice(tmp_path):
     """4^3 cubes of side 1 on a periodic simple cubic lattice of spacing 1.25 (centres at (k + 1/2) 1.25),
     20 slabs of 0.25 along z, grid spacing dx = 0.125 (10 points per period, no point on a cube face): a slab
     wholly inside a cube layer has phi = (1 / 1.25)^2 = 0.64, and the slabs that a layer's faces cut in
-    half (each 0.125 of cube, 0.125 of gap) 0.32: the analytic fraction, exact on this grid (bound 1e-12); the mean over
-    all slabs is (1 / 1.25)^3 = 0.512."""
-    lines = [f"create_atoms 1 single {float((i + 0.5) * 1.25)!r} {float((j + 0.5) * 1.25)!r} {float((k + 0.5) * 1.25)!r} shape c "
-             f"density 1" for i in range(4) for j in range(4) for k in range(4)]
+    half (each 0.125 of cube, 0.125 of gap) 0.32: the analytic fraction, exact on this grid (bound 1e-12);
+    the mean over all slabs is (1 / 1.25)^3 = 0.512."""
+    lines = [f"create_atoms 1 single {site(*((np.array([i, j, k]) + 0.5) * 1.25))} shape c density 1"
+             for i in range(4) for j in range(4) for k in range(4)]
     path = tmp_path / "phi.dat"
     sim = dem.Simulation(screen=False)
     sim.commands("""units si
@@ -133,3 +137,42 @@ create_box 1 box
         sim.command(f"fix p all ave/profile 2 3 {tmp_path / 'a'} z 8 count")
     with pytest.raises(DemError, match="no value"):
         sim.command(f"fix p all ave/profile 1 1 {tmp_path / 'a'} z 8 bounds 0 1")
+
+
+def test_time_average_over_samples(tmp_path):
+    """Free fall of the lattice under gravity (nve/sphere, no contact): ave/profile 1 2 averages samples at
+    steps 1 and 2, so its vz is the mean of the two per-step profiles of ave/profile 1 1, and its Tzz, eq. 13
+    with the means over the bin and time, is the variance of the two sample velocities, (g dt / 2)^2 (one
+    step apart: vz differs by g dt). Bounds: 1e-9 relative for vz (the file's 10 digits), 1e-8 for the
+    differences of file values (vz1 - vz2 is a third of vz: a digit lost)."""
+    one, two = tmp_path / "one.dat", tmp_path / "two.dat"
+    sim, _ = sphere_lattice(tmp_path / "p.dat", "count", f"""fix nve all nve/sphere
+fix g all gravity 9.81 vector 0 0 -1
+fix one all ave/profile 1 1 {one} z 8 vz
+fix two all ave/profile 1 2 {two} z 8 vz Tzz count
+""")
+    sim.run(1)       # sphere_lattice ran step 1 with the fixes defined: samples at steps 1 and 2
+    a, b = np.loadtxt(one), np.loadtxt(two)
+    steps = sorted(set(a[:, 0]))
+    assert steps == [1.0, 2.0] and sorted(set(b[:, 0])) == [2.0]
+    v1, v2 = a[a[:, 0] == 1, 4], a[a[:, 0] == 2, 4]
+    assert b[:, 4] == pytest.approx((v1 + v2) / 2, rel=1e-9)
+    assert v1 - v2 == pytest.approx(np.full(8, 9.81 * 1e-5), rel=1e-8)
+    assert b[:, 5] == pytest.approx(((v1 - v2) / 2) ** 2, rel=1e-8)
+    assert np.array_equal(b[:, 6], np.full(8, 16.0))
+
+
+def test_ave_vector_bad_input(tmp_path):
+    sim = dem.Simulation(screen=False)
+    sim.commands("""units si
+region box block 0 1 0 1 0 1
+create_box 1 box
+compute g all rdf 10 0.2
+compute q all nematic
+""")
+    with pytest.raises(DemError, match="differ in length"):
+        sim.command(f"fix a all ave/vector 1 1 {tmp_path / 'a'} c_g c_q")
+    with pytest.raises(DemError, match="not a compute vector"):
+        sim.command(f"fix a all ave/vector 1 1 {tmp_path / 'a'} c_g[2]")
+    with pytest.raises(DemError, match="unknown compute ID"):
+        sim.command(f"fix a all ave/vector 1 1 {tmp_path / 'a'} c_nope")

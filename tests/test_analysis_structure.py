@@ -9,6 +9,11 @@ from dem_process.compute_rdf import pair_distances, rdf
 B = 0.01
 
 
+def site(i, j, k, b):
+    """The lattice site (i, j, k) + 1/2 at spacing b, as create_atoms words."""
+    return " ".join(repr(float((c + 0.5) * b)) for c in (i, j, k))
+
+
 def _box(text, bc="p p p", size=8):
     sim = dem.Simulation(screen=False)
     sim.commands(f"""units si
@@ -25,8 +30,8 @@ def test_rdf_simple_cubic_lattice(tmp_path):
     with exactly N 6 / 2 pairs. Bins of 0.0525 B put every shell radius at least 0.01 dr from a bin edge, so each
     bin's g is its exact pair count over the ideal-gas count (bound 1e-12). Written through fix ave/vector:
     rows of (r, g)."""
-    lines = [f"create_atoms 1 single {float((i + 0.5) * B)!r} {float((j + 0.5) * B)!r} {float((k + 0.5) * B)!r} radius {0.3 * B} "
-             f"density 1000" for i in range(8) for j in range(8) for k in range(8)]
+    lines = [f"create_atoms 1 single {site(i, j, k, B)} radius {0.3 * B} density 1000"
+             for i in range(8) for j in range(8) for k in range(8)]
     path = tmp_path / "g.dat"
     sim = _box("\n".join(lines) + f"""
 compute g all rdf 40 {2.1 * B}
@@ -79,7 +84,7 @@ def test_nematic_aligned_and_random(tmp_path):
     long axis (x, smallest moment). 1000 random orientations: the largest eigenvalue of Q is ~ the noise of
     a 3x3 traceless average of N terms of variance 1/5: each element's standard deviation sqrt(1/5N) =
     0.014; bound 0.08 (5.6 sigma for each axis), against 1 for order."""
-    lines = [f"create_atoms 1 single {float((i + 0.5) * 0.04)!r} {float((j + 0.5) * 0.04)!r} {float((k + 0.5) * 0.04)!r} shape b density 1000"
+    lines = [f"create_atoms 1 single {site(i, j, k, 0.04)} shape b density 1000"
              for i in range(10) for j in range(10) for k in range(10)]
     text = "shape b box 0.02 0.01 0.005\n" + "\n".join(lines) + "\ncompute q all nematic\n"
     sim = _box(text, size=40)

@@ -40,18 +40,13 @@ def region_volume(sim, reg, what):
                    f"give `volume V`)")
 
 
-def selection(obj, region=None):
-    """Mask of the owned particles in obj's group (and with their centre in `region`)."""
-    sel = obj.group_mask() if hasattr(obj, "group_mask") else _group_mask(obj)
+def selection(sim, groupbit, region=None):
+    """Mask of the owned particles in the group (and with their centre in `region`)."""
+    atom = sim.atom
+    sel = (atom.data["mask"][:atom.nlocal] & groupbit) != 0
     if region is not None and sel.any():
-        x = obj.sim.atom.data["x"][:obj.sim.atom.nlocal]
-        sel &= region.inside(x)
+        sel &= region.inside(atom.data["x"][:atom.nlocal])
     return sel
-
-
-def _group_mask(fix):
-    atom = fix.sim.atom
-    return (atom.data["mask"][:atom.nlocal] & fix.groupbit) != 0
 
 
 def volumes(sim, shape, radius):

@@ -56,7 +56,7 @@ class ComputeContactTypes(Compute):
 
     def compute_vector(self):
         sim = self.sim
-        sel = selection(self, self.region)
+        sel = selection(sim, self.groupbit, self.region)
         counts = sim.tally.get("types", f"compute {self.id} contact/types")[sel]
         ends = sim.comm.sum_values(type_ends(counts).sum(axis=0).astype(float))
         n = sim.comm.sum(int(sel.sum()))

@@ -66,7 +66,7 @@ class ComputeStress(Compute):
 
     def compute_vector(self):
         sim = self.sim
-        sel = selection(self, self.region)
+        sel = selection(sim, self.groupbit, self.region)
         atom = sim.atom
         parts = [contact_moment(sim, sel, f"compute {self.id} stress").reshape(9)]
         if self.kinetic:

@@ -5,7 +5,7 @@ from dem.errors import DemError
 from dem.fix import Fix, Stage
 
 from . import profile_bins as pb
-from .analysis import axis_index
+from .analysis import axis_index, selection
 from .compute_porosity import solid_points
 from .series_file import SeriesFile
 
@@ -147,8 +147,7 @@ class FixAveProfile(Fix):
 
     def sample(self):
         sim = self.sim
-        atom = sim.atom
-        sel = (atom.data["mask"][:atom.nlocal] & self.groupbit) != 0
+        sel = selection(sim, self.groupbit)
         who = f"fix {self.id} ave/profile"
         stress = sim.tally.get("stress", who) if "stress" in self.tallies else None
         types = sim.tally.get("types", who) if "types" in self.tallies else None

@@ -47,7 +47,8 @@ class FixAveVector(Fix):
             self.computes.append(c)
         sizes = {c.size_vector for c in self.computes}
         if len(sizes) > 1:
-            raise DemError(f"{what}: the vectors differ in length ({', '.join(f'{c.id}: {c.size_vector}' for c in self.computes)})")
+            lengths = ", ".join(f"{c.id}: {c.size_vector}" for c in self.computes)
+            raise DemError(f"{what}: the vectors differ in length ({lengths})")
         self.size = sizes.pop()
         coords = self.computes[0].coords
         self.coords = np.asarray(coords, float) if coords is not None else np.arange(1, self.size + 1, dtype=float)
