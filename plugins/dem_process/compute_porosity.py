@@ -22,21 +22,27 @@ def polyhedron_planes(sim):
     return np.ascontiguousarray(planes), start
 
 
-def solid_points(sim, sel, glo, h, npts, kind=0, params=None):
-    """(grid points in the region, solid ones), summed over ranks, of the grid glo + (i + 1/2) h, i < npts,
-    against the selected owned particles (every rank gathers them and counts a share of the z-layers)."""
-    atom, dom, comm = sim.atom, sim.domain, sim.comm
+def gather_bodies(sim, sel):
+    """The selected owned particles as the voxel kernel takes them (x, radius, shape, rotation rows), from
+    every rank on every rank (each counts a share of the grid layers)."""
+    atom, comm = sim.atom, sim.comm
     n = atom.nlocal
     fields = [atom.data[k][:n][sel] for k in ("x", "radius", "shape", "quat")]
     if comm.nprocs > 1:
         tags = atom.data["tag"][:n][sel]
         fields = [comm.allgather_rows(tags, f)[1] for f in fields]
     x, r, shape, quat = fields
-    x = np.ascontiguousarray(np.asarray(x, dtype=float).reshape(-1, 3))
-    r = np.ascontiguousarray(r, dtype=float)
-    shape = np.ascontiguousarray(shape, dtype=np.int32)
     quat = np.asarray(quat, dtype=float).reshape(-1, 4)
     rot = np.ascontiguousarray(quat_to_matrix(quat).reshape(-1, 9)) if len(quat) else np.zeros((1, 9))
+    return (np.ascontiguousarray(np.asarray(x, dtype=float).reshape(-1, 3)), np.ascontiguousarray(r, dtype=float),
+            np.ascontiguousarray(shape, dtype=np.int32), rot)
+
+
+def solid_points(sim, bodies, glo, h, npts, kind=0, params=None):
+    """(grid points in the region, solid ones), summed over ranks, of the grid glo + (i + 1/2) h, i < npts,
+    against `bodies` (gather_bodies)."""
+    dom, comm = sim.domain, sim.comm
+    x, r, shape, rot = bodies
     planes, start = polyhedron_planes(sim)
     inside, solid = _compute_porosity.voxel_count(
         x, r, np.asarray(glo, float), np.asarray(h, float), np.asarray(npts, np.int64), dom.lo, dom.prd,
@@ -121,7 +127,8 @@ class ComputePorosity(Compute):
     def compute_vector(self):
         glo, h, npts = self.grid()
         kind, params = self._region_params()
-        inside, solid = solid_points(self.sim, self.group_mask(), glo, h, npts, kind, params)
+        bodies = gather_bodies(self.sim, self.group_mask())
+        inside, solid = solid_points(self.sim, bodies, glo, h, npts, kind, params)
         phi = solid / inside if inside else 0.0
         return np.array([1.0 - phi, phi, float(inside), solid * float(np.prod(h))])
 

@@ -6,7 +6,7 @@ from dem.fix import Fix, Stage
 
 from . import profile_bins as pb
 from .analysis import axis_index, selection
-from .compute_porosity import solid_points
+from .compute_porosity import gather_bodies, solid_points
 from .series_file import SeriesFile
 
 
@@ -139,9 +139,10 @@ class FixAveProfile(Fix):
         npts = np.maximum(np.rint(prd / dx), 1).astype(np.int64)
         h = prd / npts
         phi = np.zeros(self.nbin)
+        bodies = gather_bodies(sim, sel)
         for k in range(self.nbin):
             lo[self.axis] = self.lo + k * self.width
-            inside, solid = solid_points(sim, sel, lo, h, npts)
+            inside, solid = solid_points(sim, bodies, lo, h, npts)
             phi[k] = solid / inside if inside else 0.0
         return phi
 
