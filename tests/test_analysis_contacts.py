@@ -113,6 +113,10 @@ def test_static_column_stress_equals_weight(tmp_path):
     n = 4
     path = tmp_path / "column.dat"
     sim, z = column(n, f"""compute s all stress
+region everywhere block INF INF INF INF -1 1
+region top block INF INF INF INF 0.0025 1
+compute sr all stress region everywhere
+compute sv all stress region top volume 1e-6
 fix p all ave/profile 1 1 {path} z 6 szz sxx count
 """)
     sim.run(1)             # no integrator: nothing moves; the profile samples the end of step 1
@@ -123,6 +127,11 @@ fix p all ave/profile 1 1 {path} z 6 szz sxx count
     assert s[2] == pytest.approx(float(np.dot(w, l)) / vol, rel=1e-9)
     assert s[2] == pytest.approx(M * G * A * 10 / vol, rel=2e-4)
     assert abs(s[0]) < 1e-9 * s[2] and abs(s[3]) < 1e-9 * s[2]
+    # a region with infinite bounds is clipped to the box; one above the base cube leaves out its half
+    # of the first contact (the base's centre is below it), here over a given volume
+    assert sim.computes["sr"].vector() == pytest.approx(s, rel=1e-12, abs=1e-12 * s[2])
+    w_l_top = float(np.dot(w, l)) - 0.5 * w[0] * l[0]
+    assert sim.computes["sv"].vector()[2] == pytest.approx(w_l_top / 1e-6, rel=1e-9)
     data = np.loadtxt(path)
     szz, sxx, count = data[:, 4], data[:, 5], data[:, 6]
     assert np.array_equal(count, [1, 1, 1, 1, 1, 0])
