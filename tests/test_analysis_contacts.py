@@ -215,3 +215,32 @@ def test_lattice_on_one_and_two_ranks(tmp_path):
         assert row[1:3] == [2.0, 6.0]
         assert row[3] == pytest.approx(expect, rel=1e-9)
         assert max(abs(r) for r in row[4:7]) < 1e-9 * expect
+
+
+def test_stress_of_convex_gjk_equals_force_times_branch():
+    """convex/gjk (a sphere on a slightly tilted cube, off its axis: one GJK point, levers from each centre,
+    force and branch not parallel): whatever the point,
+    the two bodies' terms sum to F (x) (G_j - G_i), so sigma V = -F_i (x) (x_j - x_i) from the force array, to
+    round-off (bound 1e-9 of the largest component), tensor symmetric by construction."""
+    sim = dem.Simulation(screen=False)
+    sim.commands("""units si
+boundary f f f
+region box block -0.01 0.01 -0.01 0.01 -0.01 0.01
+create_box 1 box
+shape c cube 0.002
+create_atoms 1 single 0 0 0 shape c density 2500 quat 0.99875 0.05 0 0
+create_atoms 1 single 0.0004 0.0003 0.00197 radius 0.001 density 2500
+pair_style convex/gjk
+pair_coeff * * kn 1e5 en 0.5 mu 0.5
+fix nve all nve/shape
+timestep 1e-7
+compute s all stress volume 1e-6
+""")
+    sim.run(0)
+    assert sim.pair.ncontacts == 1
+    f0 = sim.atom.local("f")[0]
+    x = sim.atom.local("x")
+    t = -np.outer(f0, x[1] - x[0])
+    t = 0.5 * (t + t.T)
+    expect = np.array([t[0, 0], t[1, 1], t[2, 2], t[0, 1], t[0, 2], t[1, 2]]) / 1e-6
+    assert sim.computes["s"].vector() == pytest.approx(expect, abs=1e-9 * np.abs(expect).max())
