@@ -11,6 +11,7 @@ cdef class ParticleView:
         cdef double[:, ::1] f = d["f"], torque = d["torque"]
         cdef const double[::1] radius = d["radius"], rmass = d["rmass"]
         cdef const int[::1] type_ = d["type"], shape = d["shape"], mask = d["mask"]
+        cdef double[:, ::1] tally
         self._keep = tuple(d[k] for k in ("x", "v", "omega", "quat", "f", "torque", "radius", "rmass", "type", "shape", "mask"))
         self.p.nlocal = atom.nlocal
         self.p.nall = atom.nall
@@ -25,3 +26,12 @@ cdef class ParticleView:
         self.p.type = &type_[0]
         self.p.shape = &shape[0]
         self.p.mask = &mask[0]
+        self.p.stress = NULL
+        self.p.ctypes = NULL
+        if "tally_stress" in d:
+            tally = d["tally_stress"]
+            self.p.stress = &tally[0, 0]
+        if "tally_types" in d:
+            tally = d["tally_types"]
+            self.p.ctypes = &tally[0, 0]
+        self._keep = self._keep + tuple(d[k] for k in ("tally_stress", "tally_types") if k in d)

@@ -31,6 +31,7 @@ class Fix:
     style = None
     stages = Stage(0)
     time_integrate = False
+    tallies = ()          # per-particle contact tallies read (dem/tally.py: "stress", "types")
 
     def __init__(self, sim, fid, group, args):
         self.sim = sim

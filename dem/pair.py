@@ -13,6 +13,7 @@ class Pair:
 
     kind = "pair"
     style = None
+    tallies = ()          # per-particle contact tallies its kernel can fill (dem/tally.py)
 
     def __init__(self, sim, args):
         self.sim = sim

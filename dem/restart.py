@@ -24,7 +24,8 @@ def write_restart(sim, path):
     for h in sim.neighbor.histories:
         h.pack()
     n = atom.nlocal
-    fields = {name: atom.data[name][:n].copy() for name in atom.fields}
+    keep = [name for name in atom.fields if name not in sim.tally.active]    # tallies: remade each step
+    fields = {name: atom.data[name][:n].copy() for name in keep}
     nb = sim.neighbor
     state = {
         "step": sim.update.ntimestep, "time": sim.update.time, "dt": sim.update.dt,
@@ -32,7 +33,7 @@ def write_restart(sim, path):
         "ntypes": atom.ntypes, "natoms": atom.natoms, "max_tag": atom.max_tag, "groups": sim.groups.names,
         "nlost": sim.domain.nlost,
         "fields": fields,
-        "field_specs": {k: (v[0], v[1].str, v[2], v[3]) for k, v in atom.fields.items()},
+        "field_specs": {k: (v[0], v[1].str, v[2], v[3]) for k, v in atom.fields.items() if k in keep},
         "neighbor": {"xhold": nb.xhold.copy() if nb.hold_valid else None, "last_build": nb.last_build,
                      "last_sort": nb.last_sort, "sort_every": nb.sort_every,
                      "skin": nb.skin, "every": nb.every, "delay": nb.delay, "check": nb.check},

@@ -18,6 +18,7 @@ from .neighbor import Neighbor
 from .output import Output
 from .registry import default_registry
 from .shape_command import SimShapes
+from .tally import Tally
 from .update import Update
 
 
@@ -44,6 +45,7 @@ class Sim:
         self.modify = Modify(self)
         self.shapes = SimShapes()      # the shape table, empty until a `shape` command adds a row
         self.computes = {}             # compute ID -> compute, in definition order
+        self.tally = Tally(self)       # per-particle contact tallies that analysis styles ask for
         self.callbacks = {}            # name -> Python function, for fix python/every
         self.update = Update(self)
         self.output = Output(self)

@@ -50,6 +50,7 @@ class Update:
             sim.warning("no integrator fix (e.g. 'fix 1 all nve/sphere'): particles will not move")
         if sim.pair is not None:
             sim.pair.init()
+        sim.tally.update()
         sim.neighbor.init()
         atom, nb = sim.atom, sim.neighbor
         continuing = not sim.comm.any(not (nb.hold_valid and len(nb.xhold) == atom.nlocal))
@@ -149,6 +150,7 @@ class Update:
         atom = sim.atom
         atom.data["f"][:atom.nall] = 0.0
         atom.data["torque"][:atom.nall] = 0.0
+        sim.tally.clear()
         if advance:
             sim.modify.pre_force()
         t1 = clock()
@@ -159,6 +161,7 @@ class Update:
         t2 = clock()
         timers["pair"] += t2 - t1
         sim.comm.reverse()
+        sim.tally.reverse()
         t3 = clock()
         timers["comm"] += t3 - t2
         if advance:

@@ -101,6 +101,11 @@ class CommMPI(Comm):
         self.world.Allreduce(MPI.IN_PLACE, values, MPI.MAX)
         return values
 
+    def sum_values(self, values):
+        values = np.ascontiguousarray(values, dtype=np.float64)
+        self.world.Allreduce(MPI.IN_PLACE, values, MPI.SUM)
+        return values
+
     def min_avg_max(self, values):
         """(min, average, max) over ranks of a small float array, elementwise: three Allreduces."""
         v = np.ascontiguousarray(values, dtype=np.float64)

@@ -40,6 +40,10 @@ class Comm:
         """Elementwise max over ranks of a small float64 array (in place; serial: as it is)."""
         return values
 
+    def sum_values(self, values):
+        """Elementwise sum over ranks of a float64 array (in place; serial: as it is): analysis profiles."""
+        return values
+
     def min_avg_max(self, values):
         """(min, average, max) over ranks of a small float array, elementwise (serial: the values thrice)."""
         v = np.asarray(values, dtype=np.float64)
@@ -139,12 +143,19 @@ class Comm:
         d = atom.data
         _serial.forward(d["x"], d["v"], d["omega"], d["quat"], self.ghost_owner, self.ghost_shift, atom.nlocal)
 
-    def reverse(self):
-        """Add the forces and torques accumulated on ghosts to their owners, in ghost order."""
+    def reverse(self, fields=None):
+        """Add the forces and torques accumulated on ghosts to their owners, in ghost order (or the float
+        per-particle `fields` named, e.g. the contact tallies of dem/tally.py)."""
         atom = self.sim.atom
         if atom.nghost == 0:
             return
-        _serial.reverse(atom.data["f"], atom.data["torque"], self.ghost_owner, atom.nlocal)
+        if fields is None:
+            _serial.reverse(atom.data["f"], atom.data["torque"], self.ghost_owner, atom.nlocal)
+            return
+        n, nall = atom.nlocal, atom.nall
+        for name in fields:
+            arr = atom.data[name]
+            np.add.at(arr, self.ghost_owner, arr[n:nall])
 
     # ----- restarts (serial: the file holds this process's particles as they are) -------------------
     def gather_restart(self, state):

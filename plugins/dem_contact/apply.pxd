@@ -7,7 +7,11 @@ optional rolling resistance, all times the record's weight.
 A Body is one side of a contact. Pair styles call apply_pair(_law), walls apply_wall(_law), where the wall
 is the Body b: `v` is its velocity at the contact point and `w` its spin (for rolling resistance); it takes no force
 (its x, f, t are not read). Both are one function, _apply, whose `wall` flag is a constant at each call.
-Rolling resistance acts when reff > 0 (spheres: R_eff; Grains3D applies none to shaped bodies)."""
+Rolling resistance acts when reff > 0 (spheres: R_eff; Grains3D applies none to shaped bodies).
+
+A Body's `s` (9 doubles, or NULL) receives F (x) l, the force it takes times its lever from its centre of
+mass: the per-particle contact stress tally of dem/tally.py (a rolling couple adds only an antisymmetric
+part and is left out)."""
 from dem._math cimport cross3
 from dem.contact.record cimport Contact
 from dem_contact.law cimport hooke, descantes, rolling_torque, LAW_DESCANTES
@@ -19,6 +23,7 @@ cdef struct Body:
     const double* w     # angular velocity (a wall: its spin)
     double* f           # force and torque sums (unused for a wall)
     double* t
+    double* s           # stress tally F (x) lever, row-major 3x3, or NULL (dem/tally.py; unused for a wall)
 
 
 cdef inline void _point_velocity(const Body* b, const double* l, double* u) noexcept nogil:
@@ -56,6 +61,13 @@ cdef inline double apply_wall_law(const double* c, const Contact* k, const Body*
     """apply_wall with the law `law` (law.pxd: LAW_GRAINS3D, i.e. apply_wall, or LAW_DESCANTES: no history,
     xi is not read)."""
     return _apply(c, k, a, wall, m, reff, xi, dt, advance, out, True, law)
+
+
+cdef inline void _tally(double* s, const double* f, const double* l, double sign) noexcept nogil:
+    cdef int r, c
+    for r in range(3):
+        for c in range(3):
+            s[3 * r + c] += sign * f[r] * l[c]
 
 
 cdef inline double _apply(const double* c, const Contact* k, const Body* a, const Body* b, double meff,
@@ -134,6 +146,15 @@ cdef inline double _apply(const double* c, const Contact* k, const Body* a, cons
             cross3(lj, out, lxf)
             for d in range(3):
                 b.t[d] -= lxf[d]
+    if a.s != NULL or (not wall and b.s != NULL):
+        if k.central:
+            for d in range(3):
+                li[d] = -k.arm_a * n[d]
+                lj[d] = k.arm_b * n[d]
+        if a.s != NULL:
+            _tally(a.s, out, li, 1.0)
+        if not wall and b.s != NULL:
+            _tally(b.s, out, lj, -1.0)
     out[3] = out[4] = out[5] = 0.0
     if reff > 0.0 and rolling_torque(c, wa, wb, fn, reff, tr):
         for d in range(3):

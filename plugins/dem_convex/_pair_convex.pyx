@@ -359,11 +359,13 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
             A.w = &P.omega[3 * i]
             A.f = &P.f[3 * i]
             A.t = &P.torque[3 * i]
+            A.s = &P.stress[9 * i] if P.stress != NULL else NULL
             B.x = xj
             B.v = &P.v[3 * j]
             B.w = &P.omega[3 * j]
             B.f = &P.f[3 * j]
             B.t = &P.torque[3 * j]
+            B.s = &P.stress[9 * j] if P.stress != NULL else NULL
             # rolling resistance between spheres only (as pair sphere); none for shaped bodies (Part III)
             energy += apply_pair(&coeff[P.type[i], P.type[j], 0], &con, &A, &B, meff,
                                 P.radius[i] * P.radius[j] / rsum if sph_i and sph_j else 0.0,

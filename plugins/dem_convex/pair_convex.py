@@ -51,6 +51,7 @@ class PairConvexGJK(PairCoefficients, Pair):
     """
 
     style = "convex/gjk"
+    tallies = ("stress",)    # per-particle contact tallies for analysis (dem/tally.py)
 
     def __init__(self, sim, args):
         super().__init__(sim, args)

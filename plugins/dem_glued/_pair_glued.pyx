@@ -307,11 +307,13 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 A.w = &P.omega[3 * i]
                 A.f = &P.f[3 * i]
                 A.t = &P.torque[3 * i]
+                A.s = &P.stress[9 * i] if P.stress != NULL else NULL
                 B.x = &P.x[3 * j]
                 B.v = &P.v[3 * j]
                 B.w = &P.omega[3 * j]
                 B.f = &P.f[3 * j]
                 B.t = &P.torque[3 * j]
+                B.s = &P.stress[9 * j] if P.stress != NULL else NULL
                 # rolling resistance between two plain spheres only (as pair sphere); none for shaped bodies
                 rsum = P.radius[i] + P.radius[j]
                 for q in range(npt):

@@ -295,6 +295,10 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                         stats[9] += npt
                 else:
                     stats[8] += 1.0
+                if P.ctypes != NULL:       # per-particle census for analysis (dem/tally.py)
+                    q = typ - 1 if typ > 0 else 4
+                    P.ctypes[5 * i + q] += 1.0
+                    P.ctypes[5 * j + q] += 1.0
                 weight = 1.0 / npt
                 meff = P.rmass[i] * P.rmass[j] / (P.rmass[i] + P.rmass[j])
                 BA.x = &P.x[3 * i]
@@ -302,11 +306,13 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 BA.w = &P.omega[3 * i]
                 BA.f = &P.f[3 * i]
                 BA.t = &P.torque[3 * i]
+                BA.s = &P.stress[9 * i] if P.stress != NULL else NULL
                 BB.x = &P.x[3 * j]
                 BB.v = &P.v[3 * j]
                 BB.w = &P.omega[3 * j]
                 BB.f = &P.f[3 * j]
                 BB.t = &P.torque[3 * j]
+                BB.s = &P.stress[9 * j] if P.stress != NULL else NULL
                 for q in range(npt):
                     con[q].weight = weight
                     con[q].central = False

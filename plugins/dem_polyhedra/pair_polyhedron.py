@@ -53,6 +53,7 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
     """
 
     style = "polyhedron/multipoint"
+    tallies = ("stress", "types")    # per-particle contact tallies for analysis (dem/tally.py)
 
     def __init__(self, sim, args):
         super().__init__(sim, args)

@@ -10,6 +10,47 @@ from dem.thermo import quat_to_matrix
 from . import _compute_porosity
 
 
+def polyhedron_planes(sim):
+    """Face planes of the polyhedron rows of the shape table (the voxel kernel's point-in-body test):
+    (planes (P, 4), start (rows + 1)), row k's at start[k]:start[k + 1]."""
+    rows = sim.shapes.rows if len(sim.shapes) else []
+    blocks = [np.asarray(s._planes(), float).reshape(-1, 4) if s.kind == POLYHEDRON else np.zeros((0, 4))
+              for s in rows]
+    start = np.zeros(len(rows) + 1, np.int64)
+    start[1:] = np.cumsum([len(b) for b in blocks])
+    planes = np.vstack(blocks + [np.zeros((1, 4))])
+    return np.ascontiguousarray(planes), start
+
+
+def gather_bodies(sim, sel):
+    """The selected owned particles as the voxel kernel takes them (x, radius, shape, rotation rows), from
+    every rank on every rank (each counts a share of the grid layers)."""
+    atom, comm = sim.atom, sim.comm
+    n = atom.nlocal
+    fields = [atom.data[k][:n][sel] for k in ("x", "radius", "shape", "quat")]
+    if comm.nprocs > 1:
+        tags = atom.data["tag"][:n][sel]
+        fields = [comm.allgather_rows(tags, f)[1] for f in fields]
+    x, r, shape, quat = fields
+    quat = np.asarray(quat, dtype=float).reshape(-1, 4)
+    rot = np.ascontiguousarray(quat_to_matrix(quat).reshape(-1, 9)) if len(quat) else np.zeros((1, 9))
+    return (np.ascontiguousarray(np.asarray(x, dtype=float).reshape(-1, 3)), np.ascontiguousarray(r, dtype=float),
+            np.ascontiguousarray(shape, dtype=np.int32), rot)
+
+
+def solid_points(sim, bodies, glo, h, npts, kind=0, params=None):
+    """(grid points in the region, solid ones), summed over ranks, of the grid glo + (i + 1/2) h, i < npts,
+    against `bodies` (gather_bodies)."""
+    dom, comm = sim.domain, sim.comm
+    x, r, shape, rot = bodies
+    planes, start = polyhedron_planes(sim)
+    inside, solid = _compute_porosity.voxel_count(
+        x, r, np.asarray(glo, float), np.asarray(h, float), np.asarray(npts, np.int64), dom.lo, dom.prd,
+        dom.periodic.astype(np.int32), kind, np.zeros(1) if params is None else params, shape, rot,
+        sim.shapes.view(), planes, start, comm.me, comm.nprocs)
+    return comm.sum(int(inside)), comm.sum(int(solid))
+
+
 class ComputePorosity(Compute):
     """compute ID group porosity REGION-ID [resolution K | dx D]
 
@@ -83,39 +124,11 @@ class ComputePorosity(Compute):
             return 2, np.array([*reg.center, reg.radius], dtype=float)
         return 0, np.zeros(1)
 
-    def _planes(self):
-        """Face planes of the polyhedron rows of the shape table (the kernels' point-in-body test)."""
-        rows = self.sim.shapes.rows if len(self.sim.shapes) else []
-        blocks = [np.asarray(s._planes(), float).reshape(-1, 4) if s.kind == POLYHEDRON else np.zeros((0, 4))
-                  for s in rows]
-        start = np.zeros(len(rows) + 1, np.int64)
-        start[1:] = np.cumsum([len(b) for b in blocks])
-        planes = np.vstack(blocks + [np.zeros((1, 4))])
-        return np.ascontiguousarray(planes), start
-
     def compute_vector(self):
-        sim = self.sim
-        atom, dom, comm = sim.atom, sim.domain, sim.comm
         glo, h, npts = self.grid()
         kind, params = self._region_params()
-        n = atom.nlocal
-        sel = self.group_mask()
-        fields = [atom.data[k][:n][sel] for k in ("x", "radius", "shape", "quat")]
-        if comm.nprocs > 1:
-            # every rank sees every particle of the group and counts its share of the grid layers
-            tags = atom.data["tag"][:n][sel]
-            fields = [comm.allgather_rows(tags, f)[1] for f in fields]
-        x, r, shape, quat = fields
-        x = np.ascontiguousarray(np.asarray(x, dtype=float).reshape(-1, 3))
-        r = np.ascontiguousarray(r, dtype=float)
-        shape = np.ascontiguousarray(shape, dtype=np.int32)
-        quat = np.asarray(quat, dtype=float).reshape(-1, 4)
-        rot = np.ascontiguousarray(quat_to_matrix(quat).reshape(-1, 9)) if len(quat) else np.zeros((1, 9))
-        planes, start = self._planes()
-        inside, solid = _compute_porosity.voxel_count(x, r, glo, h, npts, dom.lo, dom.prd,
-                                                      dom.periodic.astype(np.int32), kind, params, shape, rot,
-                                                      sim.shapes.view(), planes, start, comm.me, comm.nprocs)
-        inside, solid = comm.sum(int(inside)), comm.sum(int(solid))
+        bodies = gather_bodies(self.sim, self.group_mask())
+        inside, solid = solid_points(self.sim, bodies, glo, h, npts, kind, params)
         phi = solid / inside if inside else 0.0
         return np.array([1.0 - phi, phi, float(inside), solid * float(np.prod(h))])
 

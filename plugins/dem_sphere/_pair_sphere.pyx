@@ -33,6 +33,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
             A.w = &P.omega[3 * i]
             A.f = &P.f[3 * i]
             A.t = &P.torque[3 * i]
+            A.s = &P.stress[9 * i] if P.stress != NULL else NULL
             for k in range(offsets[i], offsets[i + 1]):
                 j = neigh[k]
                 dx[0] = P.x[3 * i] - P.x[3 * j]
@@ -64,6 +65,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 B.w = &P.omega[3 * j]
                 B.f = &P.f[3 * j]
                 B.t = &P.torque[3 * j]
+                B.s = &P.stress[9 * j] if P.stress != NULL else NULL
                 energy += apply_pair(&coeff[P.type[i], P.type[j], 0], &con, &A, &B, meff,
                                     P.radius[i] * P.radius[j] / rsum, &xi[k, 0] if use_history else NULL,
                                     dt, advance, out)

@@ -233,11 +233,13 @@ spring, xi not read). stats: the W_ sums (STAT)."""
                     else:
                         B.v = ZERO
                         B.w = ZERO
+                    B.s = NULL
                     A.x = x
                     A.v = &P.v[3 * i]
                     A.w = &P.omega[3 * i]
                     A.f = &P.f[3 * i]
                     A.t = &P.torque[3 * i]
+                    A.s = &P.stress[9 * i] if P.stress != NULL else NULL
                     cf = &coeff[w, P.type[i], 0]
                     energy += apply_wall_law(cf, &con, &A, &B,
                                              P.rmass[i] if average or npt == 1 else P.rmass[i] / npt,

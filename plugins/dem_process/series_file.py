@@ -1,0 +1,39 @@
+"""The output file of an averaging fix (ave/profile, ave/vector): opened on rank 0 when the fix is
+defined (replaced), a header line, blocks of lines flushed at each write."""
+import os
+
+from dem.errors import DemError
+
+
+class SeriesFile:
+    def __init__(self, sim, path, what, header):
+        self.fh = None
+        self.path = path
+        if sim.comm.me != 0:
+            return
+        try:
+            folder = os.path.dirname(path)
+            if folder:
+                os.makedirs(folder, exist_ok=True)
+            self.fh = open(path, "w")
+        except OSError as e:
+            raise DemError(f"{what}: cannot open '{path}': {e.strerror}") from None
+        self.header = header
+
+    def comment(self, line):
+        if self.fh is not None:
+            self.fh.write(line + "\n")
+
+    def write(self, lines):
+        if self.fh is None:
+            return
+        if self.header is not None:
+            self.fh.write(self.header + "\n")
+            self.header = None
+        self.fh.write("\n".join(lines) + "\n")
+        self.fh.flush()
+
+    def close(self):
+        if self.fh is not None:
+            self.fh.close()
+            self.fh = None
