@@ -40,9 +40,11 @@ def styles(kind):
     return "pair_style sphere", "fix integ all nve/sphere"
 
 
-def build(kind, n, settle, path):
-    """Random bounding spheres (the same positions for cubes and spheres: the spheres are made with the
-    cubes' bounding radius, then shrunk to the volume of a cube), settled under gravity."""
+def setup(kind, n, pair=None, wall=""):
+    """The input of the unsettled bed: random bounding spheres (the same positions for cubes and spheres:
+    the spheres are made with the cubes' bounding radius, then shrunk to the volume of a cube), gravity, a
+    floor. `pair` replaces the style's pair_style line, `wall` is appended to the floor's fix (e.g.
+    "point multipoint"): benchmarks/polyhedron_settled_bed.py settles the same bed with polyhedron/multipoint."""
     import math
     rb = SHAPES["cube" if kind == "sphere" else kind][1]
     rs = A * (3.0 / (4.0 * math.pi)) ** (1.0 / 3.0)        # sphere of the cube's volume
@@ -52,9 +54,9 @@ def build(kind, n, settle, path):
         make = f"create_atoms 1 random {n} 4821 fill shape c density 2500 quat random"
     else:
         make = f"create_atoms 1 random {n} 4821 fill radius {rb} density 2500\n        set group all radius {rs}"
-    pair, integ = styles(kind)
-    sim = dem.Simulation(screen=False)
-    sim.commands(f"""
+    default_pair, integ = styles(kind)
+    pair = pair or default_pair
+    return f"""
         boundary p p f
         region box block 0 {L} 0 {L} 0 {H + 2 * A}
         create_box 1 box
@@ -65,9 +67,16 @@ def build(kind, n, settle, path):
         pair_coeff * * {LAW}
         {integ}
         fix g all gravity 9.81 vector 0 0 -1
-        fix floor all wall/plane zplane 0 NULL {LAW}
+        fix floor all wall/plane zplane 0 NULL {LAW} {wall}
         timestep 2e-6
         thermo 0
+    """
+
+
+def build(kind, n, settle, path):
+    """The bed of `setup`, settled under gravity for `settle` steps, written to the restart `path`."""
+    sim = dem.Simulation(screen=False)
+    sim.commands(setup(kind, n) + f"""
         run {settle}
         write_restart {path}
     """)
