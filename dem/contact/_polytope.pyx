@@ -227,11 +227,11 @@ cdef int _sat_box(const Polytope* A, const Polytope* B, const Frame* F, double* 
     # above the best face value cannot be chosen (faces win within the tie tolerance)
     lim = bestA if bestA < bestB else bestB
     for j in range(3):
-        j1 = (j + 1) % 3
-        j2 = (j + 2) % 3
+        j1 = j + 1 if j < 2 else 0
+        j2 = j1 + 1 if j1 < 2 else 0
         for i in range(3):
-            i1 = (i + 1) % 3
-            i2 = (i + 2) % 3
+            i1 = i + 1 if i < 2 else 0
+            i2 = i1 + 1 if i1 < 2 else 0
             l2 = M[3 * i1 + j] * M[3 * i1 + j] + M[3 * i2 + j] * M[3 * i2 + j]
             if l2 <= SAT_PARALLEL * SAT_PARALLEL:
                 continue
@@ -777,8 +777,9 @@ cdef int _contact_frame(const Polytope* A, const Polytope* B, const Frame* F, co
             PB[2 * nb] = _dot(t1, F.t) + F.sb * _dot(t1b, v)
             PB[2 * nb + 1] = _dot(t2, F.t) + F.sb * _dot(t2b, v)
             nb += 1
-    na = _hull2(PA, na, tol)
-    nb = _hull2(PB, nb, tol)
+    if na > 1 and nb > 1:                  # (a single vertex makes the contact: no hull needed)
+        na = _hull2(PA, na, tol)
+        nb = _hull2(PB, nb, tol)
     nfa[0] = na
     nfb[0] = nb
     if na == 1 or nb == 1:
