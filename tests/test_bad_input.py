@@ -53,7 +53,7 @@ ROWS = [
     (READY + "thermo_modify overlap nan\n", "overlap must be a finite number", False),
     # ranges
     (PAIR + "pair_coeff * * kn 0 en 0.5\n", "kn must be > 0", False),
-    (PAIR + "pair_coeff * * kn 1000 en 0\n", "en must be in (0, 1]", False),
+    (PAIR + "pair_coeff * * kn 1000 en -0.1\n", "en must be in [0, 1]", False),
     (PAIR + "pair_coeff * * kn 1000 en 0.5 mu -0.1\n", "mu must be >= 0", False),
     (PAIR + "pair_coeff * * kn 1000 en 0.5 gamma_t -1\n", "gamma_t must be >= 0", False),
     (PAIR + "pair_coeff * * kn 1000 en 0.5 ks -1\n", "ks must be >= 0", False),

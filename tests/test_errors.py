@@ -37,7 +37,7 @@ CASES = [
     (BOX + "timestep abc\n", "timestep abc", "timestep: dt must be a number, got 'abc'"),
     ("units si\ncreate_atoms 1 single 0 0 0\n", "create_atoms", "create_atoms needs a box: use create_box, read_data or read_restart first"),
     (ATOMS + "pair_coeff * * kn 1 en 0.5\n", "pair_coeff", "pair_coeff before pair_style"),
-    (ATOMS + "pair_style sphere\npair_coeff * * kn 1000 en 1.5\n", "en 1.5", "pair_coeff: en must be in (0, 1]"),
+    (ATOMS + "pair_style sphere\npair_coeff * * kn 1000 en 1.5\n", "en 1.5", "pair_coeff: en must be in [0, 1] (0: critical damping)"),
     (ATOMS + "pair_style sphere\npair_coeff * * kn 1000 en 0.5 mu_rol 1\n", "mu_rol",
      "unknown coefficient 'mu_rol' (did you mean 'mu_roll'?)"),
     (BOX + "print ${undefined}\n", "undefined", "undefined variable 'undefined'"),

@@ -265,3 +265,37 @@ def test_oblique_impact_rolling_limit():
     # the overlap shrinks; measured error -5e-5
     assert v[0] == pytest.approx(5.0 / 7.0 * vt, rel=1e-3)
     assert R * w[1] == pytest.approx(5.0 / 7.0 * vt, rel=1e-3)
+
+
+def test_wall_critical_damping_en_zero():
+    """en = 0 is critical damping (beta = 1, Descantes 2022 Table 1: gamma_n = 2 sqrt(m_ij kn)): the
+    overlap of a sphere hitting the floor at v0 is delta(t) = v0 t exp(-omega0 t) (no gravity), so it peaks
+    at v0 / (omega0 e) at t = 1 / omega0 and the sphere never leaves the floor. The leap-frog with the
+    half-step dashpot is first order: at 400 steps per 1/omega0 the peak is within 0.5 % (measured 0.1 %);
+    after 30 / omega0 the sphere still touches and moves at < 1e-9 v0 (closed form: 30 e^-30 v0 = 3e-12 v0)."""
+    kn, R, rho, v0 = 1e4, 0.5, 1.0, 0.5
+    m = sphere_mass(R, rho)
+    w0 = math.sqrt(kn / m)
+    assert dem_contact.beta(0.0) == 1.0
+    dt = 1.0 / (400 * w0)
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+boundary f f f
+region box block -2 2 -2 2 -1 3
+create_box 1 box
+create_atoms 1 single 0 0 {R + 2 * v0 * dt!r} radius {R} density {rho} v 0 0 {-v0}
+pair_style sphere
+pair_coeff * * kn {kn} en 0
+fix 1 all nve/sphere
+fix floor all wall/plane zplane 0 NULL kn {kn} en 0
+timestep {dt!r}
+thermo 0
+""")
+    peak = 0.0
+    for _ in range(1200):                  # 3 / omega0
+        sim.run(1)
+        peak = max(peak, R - float(sim.atom.local("x")[0, 2]))
+    assert peak == pytest.approx(v0 / (w0 * math.e), rel=5e-3)
+    sim.run(400 * 27)
+    assert sim.modify.fixes[-1].ncontacts == 1
+    assert abs(float(sim.atom.local("v")[0, 2])) < 1e-9 * v0

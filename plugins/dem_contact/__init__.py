@@ -14,7 +14,8 @@ from .law import COLUMNS
 # columns of a coefficient row: defined once, in law.pxd
 KN, BETA, MU, GAMMA_T, KS, MU_ROLL, EN, NCOEFF, XI_WIDTH = (
     COLUMNS[k] for k in ("KN", "BETA", "MU", "GAMMA_T", "KS", "MU_ROLL", "EN", "NCOEFF", "XI_WIDTH"))
-KEYWORDS = {"kn": "normal stiffness (N/m)", "en": "normal restitution coefficient (0 < en <= 1)",
+KEYWORDS = {"kn": "normal stiffness (N/m)",
+            "en": "normal restitution coefficient (0 <= en <= 1; 0: critical damping, no rebound)",
             "mu": "Coulomb friction coefficient", "gamma_t": "tangential dissipative coefficient (1/s)",
             "ks": "tangential spring stiffness (N/m), needs contact history",
             "mu_roll": "rolling resistance coefficient (dimensionless, times R_eff |F_n|)"}
@@ -44,8 +45,8 @@ def parse(words, what, required=("kn", "en")):
 def check(c, what):
     if "kn" in c and c["kn"] <= 0:
         raise DemError(f"{what}: kn must be > 0")
-    if "en" in c and not 0 < c["en"] <= 1:
-        raise DemError(f"{what}: en must be in (0, 1]")
+    if "en" in c and not 0 <= c["en"] <= 1:
+        raise DemError(f"{what}: en must be in [0, 1] (0: critical damping)")
     for k in ("mu", "gamma_t", "ks", "mu_roll"):
         if c.get(k, 0.0) < 0:
             raise DemError(f"{what}: {k} must be >= 0")
@@ -69,7 +70,10 @@ def warn_frictionless(sim, owner, what):
 
 
 def beta(en):
-    """gamma_n = beta * omega0 with omega0 = sqrt(kn / m_ij) (eq. 16 with the reduced mass)."""
+    """gamma_n = beta * omega0 with omega0 = sqrt(kn / m_ij) (eq. 16 with the reduced mass); en = 0 is its
+    limit, critical damping (beta = 1: Descantes 2022 Table 1, gamma_n = 2 sqrt(m_ij kn))."""
+    if en == 0:
+        return 1.0
     ln = math.log(en)
     return -ln / math.sqrt(math.pi ** 2 + ln * ln)
 
@@ -83,7 +87,10 @@ def row(c):
 
 
 def contact_time(kn, en, meff):
-    """T_c = pi / sqrt(omega0^2 - gamma_n^2) (eq. 12)."""
+    """T_c = pi / sqrt(omega0^2 - gamma_n^2) (eq. 12). At critical damping (en = 0) the pair never parts:
+    the undamped half period pi / omega0 is returned as the contact's time scale (the time step check)."""
     w0 = math.sqrt(kn / meff)
     g = beta(en) * w0
+    if g >= w0:
+        return math.pi / w0
     return math.pi / math.sqrt(w0 * w0 - g * g)
