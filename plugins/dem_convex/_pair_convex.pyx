@@ -59,15 +59,27 @@ cdef double POINT_PARAMS[NPARAM]          # a sphere of radius 0 (zero-initialis
 cdef class ConvexWork:
     """Per-particle and per-list-entry work arrays of the pair style (see poses and compute), grown by
     `fit`; kept between steps (they are caches of the list and of the last poses, never history)."""
-    cdef public object rot, corners, xprev, move, margin, active, stats, worst
+    cdef public object rot, corners, xprev, move, margin, active, stats, worst, seen_build, seen_nall
 
     def __init__(self):
+        self.seen_build = self.seen_nall = -1
         self.rot, self.xprev, self.move = np.zeros((0, 9)), np.zeros((0, 3)), np.zeros(0)
         self.corners = np.zeros((0, NCORNER))
         self.margin = np.zeros(0)
         self.active = np.zeros((0, 2), dtype=np.int32)
         self.stats = np.zeros(7)
         self.worst = np.zeros(2, dtype=np.int64)
+
+    def step(self, sim, ParticleView view, ShapeView shapes):
+        """Once per force evaluation: fresh margins after a list rebuild (or a new particle count), then the
+        poses (used by convex/gjk and polyhedron/multipoint)."""
+        nb = sim.neighbor
+        nall = sim.atom.nall
+        reset = nb.nbuilds != self.seen_build or len(self.margin) != nb.nentries or nall != self.seen_nall
+        if reset:
+            self.seen_build, self.seen_nall = nb.nbuilds, nall
+            self.fit(nall, nb.nentries)
+        poses(view, shapes, self, reset)
 
     def fit(self, int nall, int nentries):
         """Fresh margins for a new list (zero: every pair is tested), room for nall particles."""

@@ -73,7 +73,6 @@ class PairConvexGJK(PairCoefficients, Pair):
         self.history = None
         self.use_xi = False
         self.work = _pair_convex.ConvexWork()   # poses and margins (see _pair_convex.compute)
-        self.seen_build = self.seen_nall = -1
         self.ngjk = 0
         self.nepa = 0
         self.nsep = 0
@@ -94,13 +93,8 @@ class PairConvexGJK(PairCoefficients, Pair):
         sim = self.sim
         nb = sim.neighbor
         w = self.work
-        nall = sim.atom.nall
-        reset = nb.nbuilds != self.seen_build or len(w.margin) != nb.nentries or nall != self.seen_nall
-        if reset:
-            self.seen_build, self.seen_nall = nb.nbuilds, nall
-            w.fit(nall, nb.nentries)
         view = ParticleView(sim.atom)
-        _pair_convex.poses(view, self.shape_view, w, reset)
+        w.step(sim, view, self.shape_view)
         _pair_convex.compute(view, nb.offsets, nb.neigh, self.table, self.shape_view, w, self.history.values,
                              self.use_xi, self.tol, sim.update.dt, advance)
         st = w.stats

@@ -85,7 +85,6 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         self.npoints = 0
         self.contact_types = dict.fromkeys(TYPES, 0)
         self.work = _pair_convex.ConvexWork()   # per-step poses and per-entry margins (as convex/gjk)
-        self.seen_build = self.seen_nall = -1
 
     @property
     def multipoint_average(self):
@@ -122,15 +121,8 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
 
     def compute(self, advance=True):
         sim = self.sim
-        nb = sim.neighbor
-        w = self.work
-        nall = sim.atom.nall
-        reset = nb.nbuilds != self.seen_build or len(w.margin) != nb.nentries or nall != self.seen_nall
-        if reset:
-            self.seen_build, self.seen_nall = nb.nbuilds, nall
-            w.fit(nall, nb.nentries)
         view = ParticleView(sim.atom)
-        _pair_convex.poses(view, self.shape_view, w, reset)
+        self.work.step(sim, view, self.shape_view)
         st = self.step_stats
         st[:] = 0.0
         if self.use_xi:
