@@ -1,0 +1,44 @@
+"""inputs/in.pinacoid_packing (Descantes 2022 sec. 3.1) shortened so that it cannot rot: 60 pinacoids in a
+3 x 3 d_sph box, kn / 100, 10 T_inertia; the Table 1 time scales and every output it writes."""
+import math
+import os
+
+import numpy as np
+
+import dem
+import dem_contact
+
+SCRIPT = os.path.join(os.path.dirname(__file__), os.pardir, "inputs", "in.pinacoid_packing")
+
+
+def test_pinacoid_packing_input_runs(tmp_path):
+    """Table 1 with rho = g = d_sph = 1: V = 0.143, T_inertia = sqrt(d_eq), dt = T_inertia / 400 sqrt(soft)
+    / 80 and kn = rho V / (2 T_stiffness^2) (closed forms, to round-off). The solid fraction profile holds
+    the particles' volume: over a profile spanning the whole column (zmax 30 d_eq; the short run is not
+    settled), sum(phi) dz Lx^2 equals the volume of the pinacoids (the voxel count of compute porosity at
+    d_eq / 20 per voxel: 0.5 %). All outputs are written."""
+    cwd = os.getcwd()
+    os.chdir(tmp_path)
+    try:
+        sim = dem.Simulation(screen=False, variables=[("N", ["60"]), ("Lx", ["3"]), ("soft", ["100"]),
+                                                      ("fall", ["6"]), ("damp", ["2"]), ("rest", ["2"]),
+                                                      ("out", ["tiny"]), ("zmax", ["30"])])
+        sim.file(SCRIPT)
+    finally:
+        os.chdir(cwd)
+    V = (0.5 ** 1.5) / 6 * (3 - 1 / math.tan(math.pi / 3))
+    assert abs(V - 0.143) < 5e-4
+    deq = (6 * V / math.pi) ** (1 / 3)
+    tst = math.sqrt(deq) / 400 * 10
+    assert math.isclose(sim.update.dt, tst / 80, rel_tol=1e-12)
+    assert math.isclose(sim.pair.table[1, 1, dem_contact.KN], V / (2 * tst ** 2), rel_tol=1e-12)
+    assert sim.atom.natoms == 60 and sim.pair.law == "descantes"
+    for name in ("tiny.profile.dat", "tiny.rdf.dat", "tiny.restart", "tiny.h5", "tiny.xdmf", "tiny_0.png"):
+        assert (tmp_path / name).exists(), name
+    a = np.loadtxt(tmp_path / "tiny.profile.dat")
+    a = a[a[:, 0] == a[-1, 0]]
+    assert len(a) == 60
+    dz = a[1, 3] - a[0, 3]
+    assert a[-1, 3] + dz / 2 > sim.gather("x")[:, 2].max() + 0.5        # the profile spans every body
+    s = sim.gather("radius") / sim.shapes.rows[0].bounding_radius      # the scale of each pinacoid
+    assert math.isclose(a[:, 4].sum() * dz * 9.0, (V * s ** 3).sum(), rel_tol=5e-3)
