@@ -1,5 +1,7 @@
 """inputs/in.pinacoid_packing (Descantes 2022 sec. 3.1) shortened so that it cannot rot: 60 pinacoids in a
-3 x 3 d_sph box, kn / 100, 10 T_inertia; the Table 1 time scales and every output it writes."""
+3 x 3 d_sph box, kn / 100, 10 T_inertia; the Table 1 time scales, every output it writes and the figures of
+tools/pinacoid_plot.py."""
+import importlib.util
 import math
 import os
 
@@ -42,3 +44,12 @@ def test_pinacoid_packing_input_runs(tmp_path):
     assert a[-1, 3] + dz / 2 > sim.gather("x")[:, 2].max() + 0.5        # the profile spans every body
     s = sim.gather("radius") / sim.shapes.rows[0].bounding_radius      # the scale of each pinacoid
     assert math.isclose(a[:, 4].sum() * dz * 9.0, (V * s ** 3).sum(), rel_tol=5e-3)
+
+    # the figures of tools/pinacoid_plot.py from these files
+    spec = importlib.util.spec_from_file_location(
+        "pinacoid_plot", os.path.join(os.path.dirname(__file__), os.pardir, "tools", "pinacoid_plot.py"))
+    tool = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tool)
+    assert math.isclose(tool.DEQ, deq, rel_tol=1e-12)
+    tool.main([str(tmp_path / "tiny"), "-o", str(tmp_path / "fig.png")])
+    assert (tmp_path / "fig.png").stat().st_size > 10000
