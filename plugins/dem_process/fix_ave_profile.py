@@ -7,7 +7,7 @@ from dem.fix import Fix, Stage
 from . import profile_bins as pb
 from .analysis import axis_index, selection
 from .compute_porosity import gather_bodies, solid_points
-from .series_file import SeriesFile
+from .series_file import SeriesFile, sample_step
 
 
 class FixAveProfile(Fix):
@@ -172,10 +172,9 @@ class FixAveProfile(Fix):
 
     def end_of_step(self):
         up = self.sim.update
-        step = up.ntimestep + 1          # END_OF_STEP runs before the step counter moves on
-        if step % self.every or step == self.last:
+        step = sample_step(self)
+        if step is None:
             return
-        self.last = step
         self.sample()
         if step % self.nfreq == 0:
             self.write(step, up.time + up.dt)

@@ -5,7 +5,7 @@ from dem.compute import find_compute
 from dem.errors import DemError
 from dem.fix import Fix, Stage
 
-from .series_file import SeriesFile
+from .series_file import SeriesFile, sample_step
 
 
 class FixAveVector(Fix):
@@ -59,10 +59,9 @@ class FixAveVector(Fix):
 
     def end_of_step(self):
         up = self.sim.update
-        step = up.ntimestep + 1        # END_OF_STEP runs before the step counter moves on
-        if step % self.every or step == self.last:
+        step = sample_step(self)
+        if step is None:
             return
-        self.last = step
         # evaluated as the output of step `step` (computes cache by step)
         saved = (up.ntimestep, up.time, up.vsync)
         up.ntimestep, up.time, up.vsync = step, up.time + up.dt, -0.5 * up.dt

@@ -5,6 +5,16 @@ import os
 from dem.errors import DemError
 
 
+def sample_step(fix):
+    """The step an averaging fix samples at its END_OF_STEP call (every `fix.every` steps, once per step:
+    `fix.last` is updated), or None. END_OF_STEP runs before the step counter moves on."""
+    step = fix.sim.update.ntimestep + 1
+    if step % fix.every or step == fix.last:
+        return None
+    fix.last = step
+    return step
+
+
 class SeriesFile:
     def __init__(self, sim, path, what, header):
         self.fh = None
