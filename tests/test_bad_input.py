@@ -153,6 +153,6 @@ def test_mu_without_ks_or_gamma_t_warns_once_naming_the_line(capsys):
     sim.commands(PAIR + "pair_coeff * * kn 1000 en 0.5 mu 0.5\npair_coeff * * kn 1000 en 0.5 mu 0.4\n")
     warnings = [line for line in capsys.readouterr().out.splitlines() if line.startswith("WARNING")]
     assert len(warnings) == 1
-    assert f"<string>:{last_line(PAIR) + 1}: pair_coeff: mu is given but ks and gamma_t are 0" in warnings[0]
+    assert f"<string>:{last_line(PAIR) + 1}: pair_coeff: mu is given but ks, gamma_t and beta_t are 0" in warnings[0]
     sim.commands("pair_coeff * * kn 1000 en 0.5 mu 0.5 ks 100\n")
     assert "WARNING" not in capsys.readouterr().out

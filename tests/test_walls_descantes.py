@@ -106,3 +106,19 @@ def test_law_keyword():
                  "fix drum all wall/drum y 0 0 0.004 rpm 10 point multipoint law descantes kn 1e5 en 0.5\n"
                  "timestep 2e-6\nrun 1\n")
     assert sim.modify.find("drum").contact_law == "descantes"
+
+
+def test_beta_t_is_a_fraction_of_critical_damping():
+    """`beta_t B` adds 2 B sqrt(kn m_ij) to nu_t (Descantes 2022 Table 2: gamma_t = gamma_n critical is
+    beta_t 1 with en 0). A cube 1 um into the floor (4 points) sliding at 1 mm/s, mu 10 (far from the
+    Coulomb cap), no gravity: the floor's tangential force is -2 sqrt(kn m) v_x in total (the points share
+    it 1/4 each), the same as gamma_t = sqrt(kn / m) to round-off (different arithmetic: bound 1e-14)."""
+    def fx(friction):
+        sim = _sim("descantes", 0.001 - 1e-6, vx=1e-3, en=0.0, friction=friction, gravity=False)
+        sim.atom.local("f")[:] = 0.0
+        sim.modify.find("floor").compute(False)
+        return sim.atom.local("f")[0, 0]
+    critical = 2 * np.sqrt(1e5 * M) * 1e-3
+    assert fx("mu 10 beta_t 1") == pytest.approx(-critical, rel=1e-14)
+    assert fx(f"mu 10 gamma_t {float(np.sqrt(1e5 / M))!r}") == pytest.approx(-critical, rel=1e-14)
+    assert fx("mu 10 beta_t 0.5 gamma_t 1e3") == pytest.approx(-0.5 * critical - 2e3 * M * 1e-3, rel=1e-14)

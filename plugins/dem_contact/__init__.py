@@ -12,18 +12,20 @@ from dem.errors import DemError, did_you_mean
 from .law import COLUMNS
 
 # columns of a coefficient row: defined once, in law.pxd
-KN, BETA, MU, GAMMA_T, KS, MU_ROLL, EN, NCOEFF, XI_WIDTH = (
-    COLUMNS[k] for k in ("KN", "BETA", "MU", "GAMMA_T", "KS", "MU_ROLL", "EN", "NCOEFF", "XI_WIDTH"))
+KN, BETA, MU, GAMMA_T, KS, MU_ROLL, EN, BETA_T, NCOEFF, XI_WIDTH = (
+    COLUMNS[k] for k in ("KN", "BETA", "MU", "GAMMA_T", "KS", "MU_ROLL", "EN", "BETA_T", "NCOEFF", "XI_WIDTH"))
 KEYWORDS = {"kn": "normal stiffness (N/m)",
             "en": "normal restitution coefficient (0 <= en <= 1; 0: critical damping, no rebound)",
             "mu": "Coulomb friction coefficient", "gamma_t": "tangential dissipative coefficient (1/s)",
+            "beta_t": "tangential damping as a fraction of critical, nu_t += 2 beta_t sqrt(kn m_ij) "
+                      "(1: gamma_t = gamma_n at en 0, Descantes 2022 Table 2)",
             "ks": "tangential spring stiffness (N/m), needs contact history",
             "mu_roll": "rolling resistance coefficient (dimensionless, times R_eff |F_n|)"}
-DEFAULTS = {"mu": 0.0, "gamma_t": 0.0, "ks": 0.0, "mu_roll": 0.0}
+DEFAULTS = {"mu": 0.0, "gamma_t": 0.0, "beta_t": 0.0, "ks": 0.0, "mu_roll": 0.0}
 
 
 def parse(words, what, required=("kn", "en")):
-    """Parse `kn X en X [mu X] [gamma_t X] [ks X] [mu_roll X]` into a dict (missing optional -> default)."""
+    """Parse `kn X en X [mu X] [gamma_t X] [beta_t X] [ks X] [mu_roll X]` into a dict (missing optional -> default)."""
     out = {}
     if len(words) % 2:
         raise DemError(f"{what}: coefficients come as 'keyword value' pairs, got {' '.join(words)}")
@@ -47,16 +49,16 @@ def check(c, what):
         raise DemError(f"{what}: kn must be > 0")
     if "en" in c and not 0 <= c["en"] <= 1:
         raise DemError(f"{what}: en must be in [0, 1] (0: critical damping)")
-    for k in ("mu", "gamma_t", "ks", "mu_roll"):
+    for k in ("mu", "gamma_t", "beta_t", "ks", "mu_roll"):
         if c.get(k, 0.0) < 0:
             raise DemError(f"{what}: {k} must be >= 0")
 
 
 def frictionless(c):
-    """True when mu is given but neither ks nor gamma_t: the tangential force is then zero whatever mu
-    is (the law caps a trial force of -2 gamma_t m U_rt - ks xi). LAMMPS's granular styles take
+    """True when mu is given but none of ks, gamma_t, beta_t: the tangential force is then zero whatever mu
+    is (the law caps a trial force of -nu_t U_rt - ks xi). LAMMPS's granular styles take
     Kt = 2/7 Kn for a NULL Kt; dem keeps its coefficients explicit and warns instead."""
-    return c.get("mu", 0.0) > 0 and not c.get("ks", 0.0) > 0 and not c.get("gamma_t", 0.0) > 0
+    return c.get("mu", 0.0) > 0 and not any(c.get(k, 0.0) > 0 for k in ("ks", "gamma_t", "beta_t"))
 
 
 def warn_frictionless(sim, owner, what):
@@ -65,8 +67,8 @@ def warn_frictionless(sim, owner, what):
         return
     owner._warned_frictionless = True
     where = sim.input.location
-    sim.warning(f"{where + ': ' if where else ''}{what}: mu is given but ks and gamma_t are 0, so the "
-                f"tangential force is zero (give ks and/or gamma_t for friction)")
+    sim.warning(f"{where + ': ' if where else ''}{what}: mu is given but ks, gamma_t and beta_t are 0, so the "
+                f"tangential force is zero (give ks, gamma_t or beta_t for friction)")
 
 
 def beta(en):
@@ -83,6 +85,7 @@ def row(c):
     r[KN], r[BETA], r[EN] = c["kn"], beta(c["en"]), c["en"]
     r[MU], r[GAMMA_T] = c.get("mu", 0.0), c.get("gamma_t", 0.0)
     r[KS], r[MU_ROLL] = c.get("ks", 0.0), c.get("mu_roll", 0.0)
+    r[BETA_T] = c.get("beta_t", 0.0)
     return r
 
 

@@ -2,7 +2,8 @@
 """The Grains3D contact law at one contact point (Part III eq. 10), shared by all contact geometries.
 
     F_n = kn delta n - 2 gamma_n m_ij U_rn,       gamma_n = beta sqrt(kn / m_ij)   (eq. 16)
-    F_t = -min(mu |F_n|, |-2 gamma_t m_ij U_rt - k_s xi|) t,   xi = integral of U_rt over the contact
+    F_t = -min(mu |F_n|, |-nu_t U_rt - k_s xi|) t,   xi = integral of U_rt over the contact
+    nu_t = 2 gamma_t m_ij + 2 beta_t sqrt(kn m_ij)   (beta_t = 1: the critical value of the normal dashpot)
 
 `c` points at a coefficient row: the columns C_KN ... C_EN below (Python: dem_contact.KN ..., read from
 law.COLUMNS; rows made by dem_contact.row).
@@ -19,7 +20,8 @@ cdef enum:                 # columns of a coefficient row
     C_KS = 4               # tangential spring
     C_MU_ROLL = 5          # rolling resistance
     C_EN = 6               # restitution (kept for contact times)
-    NCOEFF = 7
+    C_BETA_T = 7           # tangential damping as a fraction of critical (Descantes 2022 Table 2: 1)
+    NCOEFF = 8
     XI_WIDTH = 3           # values of the tangential spring history xi
 
 
@@ -27,9 +29,10 @@ cdef inline double hooke(const double* c, double delta, const double* n, const d
                          double* xi, double dt, bint advance, double* fn, double* ft) noexcept nogil:
     cdef double kn = c[C_KN], mu = c[C_MU], gt = c[C_GAMMA_T], ks = c[C_KS]
     cdef double vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2]
-    cdef double fnmag = kn * delta - 2.0 * c[C_BETA] * sqrt(kn * meff) * vn
+    cdef double w = sqrt(kn * meff)
+    cdef double fnmag = kn * delta - 2.0 * c[C_BETA] * w * vn
     cdef double vt[3]
-    cdef double dampt = 2.0 * gt * meff
+    cdef double dampt = 2.0 * gt * meff + 2.0 * c[C_BETA_T] * w
     cdef double ft2, cap, scale, xin
     cdef int d
     for d in range(3):
@@ -76,13 +79,14 @@ cdef inline double descantes(const double* c, double delta, const double* n, con
     """Descantes 2022 eq. 3 at one contact point (the caller's weight 1/alpha divides both forces):
 
         F_n = max(0, kn delta - nu_n U_n) n,          nu_n = 2 beta sqrt(kn m_ij)  (as hooke, from en)
-        F_t = -min(nu_t |U_t|, mu |F_n|) t,           nu_t = 2 gamma_t m_ij,  t = U_t / |U_t|
+        F_t = -min(nu_t |U_t|, mu |F_n|) t,    nu_t = 2 gamma_t m_ij + 2 beta_t sqrt(kn m_ij), t = U_t / |U_t|
 
     no attraction (a separating pair whose dashpot exceeds the spring feels no force) and no tangential
     spring: viscous friction capped by Coulomb (no history). Returns the elastic energy 0.5 kn delta^2."""
     cdef double kn = c[C_KN], mu = c[C_MU]
     cdef double vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2]
-    cdef double fnmag = kn * delta - 2.0 * c[C_BETA] * sqrt(kn * meff) * vn
+    cdef double w = sqrt(kn * meff)
+    cdef double fnmag = kn * delta - 2.0 * c[C_BETA] * w * vn
     cdef double vt[3]
     cdef double ut, scale, cap
     cdef int d
@@ -95,7 +99,7 @@ cdef inline double descantes(const double* c, double delta, const double* n, con
     ut = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2])
     if mu == 0.0 or ut == 0.0:
         return 0.5 * kn * delta * delta
-    scale = 2.0 * c[C_GAMMA_T] * meff           # nu_t
+    scale = 2.0 * c[C_GAMMA_T] * meff + 2.0 * c[C_BETA_T] * w    # nu_t
     cap = mu * fnmag
     if scale * ut > cap:
         scale = cap / ut

@@ -1,5 +1,5 @@
 """Per-type-pair coefficients of the Grains3D law, shared by every pair style that uses it (sphere,
-convex/gjk, ...): `pair_coeff I J kn KN en EN [mu ..] [gamma_t ..] [ks ..] [mu_roll ..]`, the check that
+convex/gjk, ...): `pair_coeff I J kn KN en EN [mu ..] [gamma_t ..] [beta_t ..] [ks ..] [mu_roll ..]`, the check that
 every type pair is set, the need for tangential history, and the shortest contact time."""
 import numpy as np
 
@@ -12,7 +12,7 @@ from . import EN, KN, KS, NCOEFF, contact_time, frictionless, parse, row, warn_f
 class PairCoefficients:
     """Mixin of a Pair: `self.table[ti, tj]` is the coefficient row (law.pxd reads it) of types ti, tj."""
 
-    coeff_usage = "pair_coeff I J kn KN en EN [mu ..] [gamma_t ..] [ks ..] [mu_roll ..]"
+    coeff_usage = "pair_coeff I J kn KN en EN [mu ..] [gamma_t ..] [beta_t ..] [ks ..] [mu_roll ..]"
 
     def init_coefficients(self):
         nt = self.sim.atom.ntypes

@@ -14,7 +14,7 @@ from . import _pair_convex
 class PairConvexGJK(PairCoefficients, Pair):
     """pair_style convex/gjk [tol TOL]
 
-    pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [ks KS] [mu_roll MUR]
+    pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [beta_t BT] [ks KS] [mu_roll MUR]
 
     Contacts between particles of any shape of the shape table (`shape` command) and plain spheres.
     Broad phase on bounding spheres (the core neighbor list); then two spheres meet as in

@@ -15,7 +15,7 @@ from . import _pair_glued
 class PairGluedConvex(PairCoefficients, Pair):
     """pair_style glued/convex [model A|B] [tol TOL]
 
-    pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [ks KS] [mu_roll MUR]
+    pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [beta_t BT] [ks KS] [mu_roll MUR]
 
     Contacts between glued composites (`shape NAME glued ...`, `cross3d`, ...), convex particles of any
     shape of the table and plain spheres: one pair style serves them all. Grains3D Part III sec 2.5: the

@@ -18,7 +18,7 @@ FTOL = 1e-9      # contacting-feature tolerance, per unit of the two bounding ra
 class PairPolyhedronMultipoint(PairCoefficients, Pair):
     """pair_style polyhedron/multipoint [law grains3d|descantes] [ftol FTOL]
 
-    pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [ks KS]
+    pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [beta_t BT] [ks KS]
 
     Contacts of sharp polytopes (`box`, `cube`, `polyhedron`, `tetrahedron`, `pinacoid`: no rounding, no
     crust) and plain spheres, with as many contact points as the contact has (Descantes 2022 sec. 2):
@@ -33,7 +33,8 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
 
     `law descantes`: Descantes' eq. 3 at every point instead, F_n = max(0, kn delta - nu_n U_n) / alpha
     (no attraction; nu_n from en as in the Grains3D law) and F_t = -min(nu_t |U_t|, mu F_n) t / alpha
-    (viscous, nu_t = 2 gamma_t m_ij, capped by Coulomb; no spring: ks is not used, no history). Walls choose
+    (viscous, nu_t = 2 gamma_t m_ij + 2 beta_t sqrt(kn m_ij), capped by Coulomb; beta_t 1 with en 0 gives
+    Descantes' Table 2, gamma_t = gamma_n critical; no spring: ks is not used, no history). Walls choose
     their own law: `fix ... wall/plane ... point multipoint law descantes` for the same law at the wall.
 
     With a tangential spring (ks > 0, law grains3d) every point keeps its own history, matched from step

@@ -14,16 +14,16 @@ from . import _pair_sphere
 class PairSphere(PairCoefficients, Pair):
     """pair_style sphere
 
-    pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [ks KS] [mu_roll MUR]
+    pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [beta_t BT] [ks KS] [mu_roll MUR]
 
     Spheres in contact when their surfaces overlap (overlap delta, normal n along the line of centres,
     contact point in the middle of the overlap). The Grains3D law (Part III eq. 10-16) per contact:
     normal force kn delta - 2 gamma_n m_ij U_rn with gamma_n from the restitution coefficient en and the
-    reduced mass m_ij (eq. 16); tangential force -min(mu |F_n|, |-2 gamma_t m_ij U_rt - ks xi|) along
-    the trial force, xi the tangential displacement kept as contact history while ks > 0 (it survives
+    reduced mass m_ij (eq. 16); tangential force -min(mu |F_n|, |-nu_t U_rt - ks xi|) along the trial
+    force, nu_t = 2 gamma_t m_ij + 2 beta_t sqrt(kn m_ij) (beta_t: a fraction of critical damping), xi the tangential displacement kept as contact history while ks > 0 (it survives
     neighbor-list rebuilds and restarts). Optional rolling resistance: a torque mu_roll R_eff |F_n|
-    opposing the relative angular velocity. Defaults: mu 0, gamma_t 0 (1/s), ks 0 (N/m), mu_roll 0
-    (with gamma_t = ks = 0 there is no tangential force whatever mu is: give one of them; pair_coeff
+    opposing the relative angular velocity. Defaults: mu 0, gamma_t 0 (1/s), beta_t 0, ks 0 (N/m), mu_roll 0
+    (with gamma_t = beta_t = ks = 0 there is no tangential force whatever mu is: give one of them; pair_coeff
     warns once when mu is given without either. LAMMPS's granular styles take Kt = 2/7 Kn for a NULL
     Kt; dem keeps every coefficient explicit and never supplies one).
 

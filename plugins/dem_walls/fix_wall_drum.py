@@ -16,7 +16,7 @@ RPM = 2.0 * math.pi / 60.0
 class FixWallDrum(WallFix, Fix):
     """fix ID group wall/drum AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate]
         [point deepest|centroid|multipoint] [law grains3d|descantes]
-        [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
+        [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR]
 
     A rotating cylindrical wall (a drum) with the particles inside. AXIS is x, y or z; the axis passes
     through (C1, C2) in the two other coordinates, in x, y, z order (as `region cylinder`); RADIUS is the
@@ -61,7 +61,7 @@ class FixWallDrum(WallFix, Fix):
     style = "wall/drum"
     stages = Stage.POST_FORCE | Stage.END_OF_STEP
     usage = ("AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate] [point deepest|centroid|multipoint] "
-             "[law grains3d|descantes] [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]")
+             "[law grains3d|descantes] [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR]")
 
     def __init__(self, sim, fid, group, args):
         super().__init__(sim, fid, group, args)

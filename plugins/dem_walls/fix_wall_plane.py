@@ -9,7 +9,7 @@ from .wall_fix import POINT_MODES, S, WallFix, law_name, plane
 
 
 class FixWallPlane(WallFix, Fix):
-    """fix ID group wall/plane xplane|yplane|zplane LO HI [...] [kn KN en EN mu MU gamma_t GT ks KS mu_roll MR]
+    """fix ID group wall/plane xplane|yplane|zplane LO HI [...] [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR]
         [point deepest|centroid|multipoint] [law grains3d|descantes]
 
     Fixed planar walls. Each `xplane LO HI` adds a wall at x = LO facing +x and one at x = HI facing -x;
@@ -29,8 +29,8 @@ class FixWallPlane(WallFix, Fix):
     `law descantes` (default `law grains3d`): Descantes' eq. 3 at every contact point of this wall instead
     of the Grains3D law, as `pair_style polyhedron/multipoint law descantes` (the same function,
     dem_contact/law.pxd): F_n = max(0, kn delta - nu_n U_n) / alpha (no attraction, nu_n from en with
-    m_ij = m_i), F_t = -min(nu_t |U_t|, mu F_n) t / alpha (viscous, nu_t = 2 gamma_t m_i, capped by
-    Coulomb: give gamma_t for friction), no spring (ks unused, no history); alpha = the points of
+    m_ij = m_i), F_t = -min(nu_t |U_t|, mu F_n) t / alpha (viscous, nu_t = 2 gamma_t m_i + 2 beta_t sqrt(kn m_i),
+    capped by Coulomb: give gamma_t or beta_t for friction), no spring (ks unused, no history); alpha = the points of
     `point multipoint`, 1 otherwise. The wall's law is chosen here, not taken from the pair style.
     Glued composites (pair_style glued/convex) touch with each component, Model A/B as the pair style.
     Coefficients: given here for every type, or, when left out, those of each type with itself from
