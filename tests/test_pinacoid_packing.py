@@ -53,3 +53,29 @@ def test_pinacoid_packing_input_runs(tmp_path):
     assert math.isclose(tool.DEQ, deq, rel_tol=1e-12)
     tool.main([str(tmp_path / "tiny"), "-o", str(tmp_path / "fig.png")])
     assert (tmp_path / "fig.png").stat().st_size > 10000
+
+
+def test_pinacoid_packing_goes_on_from_a_settled_bed(tmp_path):
+    """`-var prepared 1 -var from F` reads the bed an earlier run wrote and rests it for `rest` more
+    T_inertia before averaging: same particles, the step goes on from the file's, every output again."""
+    cwd = os.getcwd()
+    os.chdir(tmp_path)
+    tiny = [("N", ["30"]), ("Lx", ["2.5"]), ("soft", ["100"]), ("fall", ["3"]), ("damp", ["1"]),
+            ("rest", ["1"])]
+    try:
+        first = dem.Simulation(screen=False, variables=tiny + [("out", ["a"])])
+        first.file(SCRIPT)
+        reader = dem.Simulation(screen=False)
+        reader.command("read_restart a.restart")
+        again = dem.Simulation(screen=False, variables=tiny + [("out", ["b"]), ("prepared", ["1"]),
+                                                              ("from", ["a.restart"])])
+        again.file(SCRIPT)
+    finally:
+        os.chdir(cwd)
+    steps_rest = round(0.75 * 1 * math.sqrt((6 * 0.5 ** 1.5 / 6 * (3 - 1 / math.tan(math.pi / 3)) / math.pi)
+                                            ** (1 / 3)) / again.update.dt)
+    averaging = first.update.ntimestep - reader.update.ntimestep        # the same in both runs
+    assert again.atom.natoms == 30 and averaging > 0
+    assert again.update.ntimestep - reader.update.ntimestep == steps_rest + averaging
+    for name in ("b.profile.dat", "b.rdf.dat", "b.restart"):
+        assert (tmp_path / name).exists(), name

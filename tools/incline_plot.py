@@ -1,0 +1,171 @@
+"""Figures and bulk values of pinacoid flows down a rough incline (inputs/in.incline; Descantes 2022 Figs.
+11-16): profiles of solid fraction, coordination, velocity (with a Bagnold fit), spin against
+-gamma_dot/2, stresses against the weight of the layer, stress ratio against tan(theta), inertial number
+and granular temperature, the kinetic energy in time, and the bulk coordination and solid fraction
+against the inertial number next to the paper's fits.
+
+    python tools/incline_plot.py PREFIX [PREFIX ...] [-o FIGURE.png] [--table]
+
+Each PREFIX is one run (one tilt): PREFIX.profile.dat, PREFIX.phi.dat (fix ave/profile, the last block:
+the final average), PREFIX.series.dat (fix print/series) and PREFIX.summary.txt (theta, d_eq...), as the
+input writes them. Heights are from the floor, in d_eq. The bulk is the band from 5 d_eq (the paper's
+"z > 5 d_eq") to 2 d_eq below the free surface, the surface being the highest bin whose solid fraction
+is at least half the largest one of the profile. `--table` prints the bulk values as a Markdown table.
+"""
+import argparse
+
+import numpy as np
+
+BULK_FROM = 5.0          # d_eq above the floor (Descantes sec. 3.2.2)
+BELOW_SURFACE = 2.0      # d_eq: the top of the bulk band under the free surface
+
+
+def last_block(path):
+    """Rows of the last step in a series file, as a dict of columns."""
+    with open(path) as f:
+        names = [line for line in f if line.startswith("# step")][-1][1:].split()
+    a = np.atleast_2d(np.loadtxt(path, comments="#"))
+    a = a[a[:, 0] == a[-1, 0]]
+    return {n: a[:, k] for k, n in enumerate(names)}
+
+
+def series(path):
+    with open(path) as f:
+        names = f.readline()[1:].split()
+    a = np.atleast_2d(np.loadtxt(path, comments="#"))
+    return {n: a[:, k] for k, n in enumerate(names)}
+
+
+def summary(path):
+    words = open(path).read().split()
+    return {k: float(v) for k, v in zip(words[::2], words[1::2])}
+
+
+def bagnold(zb, v, h):
+    """Least-squares fit of v = v0 + A (h^1.5 - (h - zb)^1.5), zb the height above the flow's base
+    (Silbert et al. 2001): v0, A and R^2."""
+    shape = h ** 1.5 - np.clip(h - zb, 0, None) ** 1.5
+    m = np.column_stack([np.ones_like(zb), shape])
+    (v0, a), *_ = np.linalg.lstsq(m, v, rcond=None)
+    fit = v0 + a * shape
+    r2 = 1 - ((v - fit) ** 2).sum() / ((v - v.mean()) ** 2).sum()
+    return v0, a, r2
+
+
+def run(prefix):
+    """One run's profiles (heights in d_eq, velocities in sqrt(g d_eq), stresses in rho g d_sph) and bulk
+    values."""
+    s = summary(prefix + ".summary.txt")
+    p = last_block(prefix + ".profile.dat")
+    phi = last_block(prefix + ".phi.dat")["phi"]
+    ts = series(prefix + ".series.dat")
+    deq = s["deq"]
+    z = p["coord"] / deq
+    dz = (z[1] - z[0]) * deq
+    surface = z[np.nonzero(phi >= 0.5 * phi.max())[0].max()]
+    bulk = (z >= BULK_FROM) & (z <= surface - BELOW_SURFACE)
+    vy = p["vy"] / np.sqrt(deq)
+    gdot = np.gradient(p["vy"], dz)
+    th = np.radians(s["theta"])
+    weight = np.cumsum(phi[::-1])[::-1] * dz - 0.5 * phi * dz          # rho g times the solid above
+    mu = np.abs(p["syz"]) / p["szz"]
+    # the flow's base: where the substrate's solid ends (the first bin, from the floor, below which the
+    # profile falls under half its largest value after its first peak)
+    base = z[np.argmax(phi)]
+    flowing = (z > base) & (z < surface) & np.isfinite(vy)
+    v0, a, r2 = bagnold(z[flowing] - base, vy[flowing], surface - base)
+    w = lambda x: float(np.nanmean(x[bulk])) if bulk.any() else float("nan")
+    out = dict(theta=s["theta"], z=z, phi=phi, vy=vy, wx=p["wx"] * np.sqrt(deq),
+               half_gdot=-0.5 * gdot * np.sqrt(deq), szz=p["szz"], syz=np.abs(p["syz"]),
+               sxx=p["sxx"], syy=p["syy"], weight=weight * np.cos(th), mu=mu, I=p["I"],
+               T=p["T"] / deq, ztot=p["ztot"], zs=p["zs"], zd=p["zd"], zt=p["zt"], bulk=bulk,
+               surface=surface, base=base, t=ts["time"] / np.sqrt(deq), ke=ts["c_ke"],
+               bagnold=(v0, a, r2), maxov=float(ts["maxov"].max()))
+    out.update(phi_b=w(phi), z_b=w(p["ztot"]), I_b=w(p["I"]), mu_b=w(mu), v_max=float(np.nanmax(vy)),
+               zs_b=w(p["zs"]), zd_b=w(p["zd"]), zt_b=w(p["zt"]))
+    # steadiness: the kinetic energy over the averaging window against the window before it
+    t_avg = s["avg"] * np.sqrt(deq)
+    t = ts["time"]
+    last = t >= t[-1] - t_avg
+    before = (t >= t[-1] - 2 * t_avg) & ~last
+    out["ke_drift"] = float(ts["c_ke"][last].mean() / ts["c_ke"][before].mean() - 1) if before.any() else np.nan
+    return out
+
+
+def table(runs):
+    print("| tilt | bulk solid fraction | bulk Z | shares s/d/t % | bulk I | bulk syz/szz | tan | "
+          "v_max / sqrt(g d_eq) | Bagnold R^2 | KE drift over the last window |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for r in runs:
+        tot = r["zs_b"] + r["zd_b"] + r["zt_b"]
+        sh = "/".join(f"{100 * r[k] / tot:.0f}" for k in ("zs_b", "zd_b", "zt_b")) if tot > 0 else "-"
+        print(f"| {r['theta']:g} | {r['phi_b']:.3f} | {r['z_b']:.2f} | {sh} | {r['I_b']:.2f} | "
+              f"{r['mu_b']:.3f} | {np.tan(np.radians(r['theta'])):.3f} | {r['v_max']:.2f} | "
+              f"{r['bagnold'][2]:.3f} | {100 * r['ke_drift']:+.0f} % |")
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("prefix", nargs="+")
+    ap.add_argument("-o", "--output", default="incline_profiles.png")
+    ap.add_argument("--table", action="store_true")
+    a = ap.parse_args(argv)
+    runs = sorted((run(p) for p in a.prefix), key=lambda r: r["theta"])
+    if a.table:
+        table(runs)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(2, 5, figsize=(22, 9))
+    ax = ax.ravel()
+    colours = plt.cm.viridis(np.linspace(0, 0.9, len(runs)))
+    for r, c in zip(runs, colours):
+        lab = f"{r['theta']:g}°"
+        z = r["z"]
+        ax[0].plot(r["phi"], z, color=c, label=lab)
+        ax[1].plot(r["ztot"], z, color=c, label=lab)
+        ax[2].plot(r["vy"], z, color=c, label=lab)
+        v0, A, _ = r["bagnold"]
+        zb = np.clip(z - r["base"], 0, r["surface"] - r["base"])
+        h = r["surface"] - r["base"]
+        sel = (z > r["base"]) & (z < r["surface"])
+        ax[2].plot((v0 + A * (h ** 1.5 - (h - zb) ** 1.5))[sel], z[sel], ":", color=c)
+        ax[3].plot(r["wx"], z, color=c, label=lab)
+        ax[3].plot(r["half_gdot"], z, ":", color=c)
+        ax[4].plot(r["szz"], z, color=c, label=lab)
+        ax[4].plot(r["syz"], z, "--", color=c)
+        ax[4].plot(r["weight"], z, ":", color=c)
+        ax[5].plot(r["mu"], z, color=c, label=lab)
+        ax[5].axvline(np.tan(np.radians(r["theta"])), color=c, ls=":")
+        ax[6].plot(r["I"], z, color=c, label=lab)
+        ax[7].plot(r["T"], z, color=c, label=lab)
+        ax[8].plot(r["t"], r["ke"], color=c, label=lab)
+        ax[9].plot(r["I_b"], r["z_b"], "o", color=c)
+        ax[9].plot(r["I_b"], 10 * r["phi_b"], "s", color=c)
+    i = np.linspace(0, 1.2, 50)
+    ax[9].plot(i, 4.5 - 3.62 * np.sqrt(i), "k:", label="Z = 4.5 - 3.62 I^0.5 (paper)")
+    ax[9].plot(i, 10 * (0.50 - 0.07 * i), "k--", label="10 nu = 10 (0.50 - 0.07 I) (paper)")
+    ax[9].set(xlabel="bulk I", ylabel="bulk Z (o), 10 x solid fraction (s)", title="Fig. 16b-c")
+    titles = [("solid fraction", "Fig. 12a"), ("coordination Z", "Fig. 12b"),
+              ("v_y / sqrt(g d_eq) (: Bagnold fit)", "Fig. 13a"),
+              ("w_x sqrt(d_eq/g) (: -gamma_dot/2)", "Fig. 13b"),
+              ("sigma_zz, |sigma_yz| (--), weight (:)", "Fig. 14a"),
+              ("|sigma_yz| / sigma_zz (: tan theta)", "Fig. 14b"), ("inertial number I", "Fig. 16a"),
+              ("granular temperature T / (g d_eq)", "Fig. 16d")]
+    for k, (xl, tt) in enumerate(titles):
+        ax[k].set(xlabel=xl, ylabel="z / d_eq", title=tt)
+        ax[k].axhline(BULK_FROM, color="0.8", lw=0.8)
+    ax[5].set_xlim(0, 1.5)
+    ax[6].set_xlim(0, 2)
+    ax[8].set(xlabel="t / T_inertia (after the tilt)", ylabel="kinetic energy of the layer", yscale="log",
+              title="Fig. 11b")
+    for k in (0, 8, 9):
+        ax[k].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(a.output, dpi=80)
+    print("wrote", a.output)
+    return runs
+
+
+if __name__ == "__main__":
+    main()
