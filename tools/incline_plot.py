@@ -10,7 +10,9 @@ Each PREFIX is one run (one tilt): PREFIX.profile.dat, PREFIX.phi.dat (fix ave/p
 the final average), PREFIX.series.dat (fix print/series) and PREFIX.summary.txt (theta, d_eq...), as the
 input writes them. Heights are from the floor, in d_eq. The bulk is the band from 5 d_eq (the paper's
 "z > 5 d_eq") to 2 d_eq below the free surface, the surface being the highest bin whose solid fraction
-is at least half the largest one of the profile. `--table` prints the bulk values as a Markdown table.
+is at least half the largest one of the profile. sigma_zz is drawn as computed (contacts, Moreau) and
+with its kinetic part rho phi T_zz added, which steady flow balances against the weight of the layer above
+(rho g cos(theta) times the solid above z). `--table` prints the bulk values as a Markdown table.
 """
 import argparse
 
@@ -42,8 +44,8 @@ def summary(path):
 
 
 def bagnold(zb, v, h):
-    """Least-squares fit of v = v0 + A (h^1.5 - (h - zb)^1.5), zb the height above the flow's base
-    (Silbert et al. 2001): v0, A and R^2."""
+    """Least-squares fit of v = v0 + A (h^1.5 - (h - zb)^1.5), zb the height above the flow's base and
+    h its depth (Bagnold's profile, Silbert et al. 2001): v0 (slip at the base), A and R^2."""
     shape = h ** 1.5 - np.clip(h - zb, 0, None) ** 1.5
     m = np.column_stack([np.ones_like(zb), shape])
     (v0, a), *_ = np.linalg.lstsq(m, v, rcond=None)
@@ -69,19 +71,23 @@ def run(prefix):
     th = np.radians(s["theta"])
     weight = np.cumsum(phi[::-1])[::-1] * dz - 0.5 * phi * dz          # rho g times the solid above
     mu = np.abs(p["syz"]) / p["szz"]
-    # the flow's base: where the substrate's solid ends (the first bin, from the floor, below which the
-    # profile falls under half its largest value after its first peak)
-    base = z[np.argmax(phi)]
-    flowing = (z > base) & (z < surface) & np.isfinite(vy)
+    # the kinetic part of sigma_zz, rho phi T_zz (rho = 1), for the momentum balance against the weight
+    szz_kin = p["szz"] + phi * p["Tzz"]
+    # the flow's base: the lowest bin moving at more than 5 % of the fastest one (below it the layer
+    # rests on the substrate)
+    fast = np.nan_to_num(vy) > 0.05 * np.nanmax(vy)
+    base = z[np.argmax(fast)] if fast.any() else z[0]
+    flowing = (z >= base) & (z < surface) & np.isfinite(vy)
     v0, a, r2 = bagnold(z[flowing] - base, vy[flowing], surface - base)
     w = lambda x: float(np.nanmean(x[bulk])) if bulk.any() else float("nan")
     out = dict(theta=s["theta"], z=z, phi=phi, vy=vy, wx=p["wx"] * np.sqrt(deq),
                half_gdot=-0.5 * gdot * np.sqrt(deq), szz=p["szz"], syz=np.abs(p["syz"]),
                sxx=p["sxx"], syy=p["syy"], weight=weight * np.cos(th), mu=mu, I=p["I"],
                T=p["T"] / deq, ztot=p["ztot"], zs=p["zs"], zd=p["zd"], zt=p["zt"], bulk=bulk,
-               surface=surface, base=base, t=ts["time"] / np.sqrt(deq), ke=ts["c_ke"],
+               surface=surface, base=base, t=(ts["time"] - ts["time"][0]) / np.sqrt(deq), ke=ts["c_ke"],
                bagnold=(v0, a, r2), maxov=float(ts["maxov"].max()))
-    out.update(phi_b=w(phi), z_b=w(p["ztot"]), I_b=w(p["I"]), mu_b=w(mu), v_max=float(np.nanmax(vy)),
+    out["szz_kin"] = szz_kin
+    out.update(balance=w(szz_kin / out["weight"]), phi_b=w(phi), z_b=w(p["ztot"]), I_b=w(p["I"]), mu_b=w(mu), v_max=float(np.nanmax(vy)),
                zs_b=w(p["zs"]), zd_b=w(p["zd"]), zt_b=w(p["zt"]))
     # steadiness: the kinetic energy over the averaging window against the window before it
     t_avg = s["avg"] * np.sqrt(deq)
@@ -94,14 +100,14 @@ def run(prefix):
 
 def table(runs):
     print("| tilt | bulk solid fraction | bulk Z | shares s/d/t % | bulk I | bulk syz/szz | tan | "
-          "v_max / sqrt(g d_eq) | Bagnold R^2 | KE drift over the last window |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+          "v_max / sqrt(g d_eq) | Bagnold R^2 | sigma_zz / weight | KE drift over the last window |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for r in runs:
         tot = r["zs_b"] + r["zd_b"] + r["zt_b"]
         sh = "/".join(f"{100 * r[k] / tot:.0f}" for k in ("zs_b", "zd_b", "zt_b")) if tot > 0 else "-"
         print(f"| {r['theta']:g} | {r['phi_b']:.3f} | {r['z_b']:.2f} | {sh} | {r['I_b']:.2f} | "
               f"{r['mu_b']:.3f} | {np.tan(np.radians(r['theta'])):.3f} | {r['v_max']:.2f} | "
-              f"{r['bagnold'][2]:.3f} | {100 * r['ke_drift']:+.0f} % |")
+              f"{r['bagnold'][2]:.3f} | {r['balance']:.3f} | {100 * r['ke_drift']:+.0f} % |")
 
 
 def main(argv=None):
@@ -128,12 +134,13 @@ def main(argv=None):
         v0, A, _ = r["bagnold"]
         zb = np.clip(z - r["base"], 0, r["surface"] - r["base"])
         h = r["surface"] - r["base"]
-        sel = (z > r["base"]) & (z < r["surface"])
+        sel = (z >= r["base"]) & (z < r["surface"])
         ax[2].plot((v0 + A * (h ** 1.5 - (h - zb) ** 1.5))[sel], z[sel], ":", color=c)
         ax[3].plot(r["wx"], z, color=c, label=lab)
         ax[3].plot(r["half_gdot"], z, ":", color=c)
         ax[4].plot(r["szz"], z, color=c, label=lab)
         ax[4].plot(r["syz"], z, "--", color=c)
+        ax[4].plot(r["szz_kin"], z, "-.", color=c)
         ax[4].plot(r["weight"], z, ":", color=c)
         ax[5].plot(r["mu"], z, color=c, label=lab)
         ax[5].axvline(np.tan(np.radians(r["theta"])), color=c, ls=":")
@@ -149,12 +156,15 @@ def main(argv=None):
     titles = [("solid fraction", "Fig. 12a"), ("coordination Z", "Fig. 12b"),
               ("v_y / sqrt(g d_eq) (: Bagnold fit)", "Fig. 13a"),
               ("w_x sqrt(d_eq/g) (: -gamma_dot/2)", "Fig. 13b"),
-              ("sigma_zz, |sigma_yz| (--), weight (:)", "Fig. 14a"),
+              ("sigma_zz, + kinetic (-.), |sigma_yz| (--), weight (:)", "Fig. 14a"),
               ("|sigma_yz| / sigma_zz (: tan theta)", "Fig. 14b"), ("inertial number I", "Fig. 16a"),
               ("granular temperature T / (g d_eq)", "Fig. 16d")]
     for k, (xl, tt) in enumerate(titles):
         ax[k].set(xlabel=xl, ylabel="z / d_eq", title=tt)
         ax[k].axhline(BULK_FROM, color="0.8", lw=0.8)
+    top = max(r["surface"] for r in runs) + 3
+    for k in range(8):
+        ax[k].set_ylim(0, top)
     ax[5].set_xlim(0, 1.5)
     ax[6].set_xlim(0, 2)
     ax[8].set(xlabel="t / T_inertia (after the tilt)", ylabel="kinetic energy of the layer", yscale="log",
