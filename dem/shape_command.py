@@ -233,6 +233,9 @@ class ShapeTemplate:
     def volume(self, radius):
         return float(self.sim.shapes.volume[self.index]) * (np.asarray(radius, dtype=float) / self.bounding) ** 3
 
+    def mean_volume(self):
+        return float(self.sim.shapes.volume[self.index]) * self.distribution.mean_cube()
+
     def properties(self, radius):
         """Per-particle fields for atom.add: rmass, inertia (n, 3), shape."""
         p = properties(self.sim, self.index, radius=radius, density=self.density)

@@ -41,7 +41,8 @@ def random_points(region, domain, rng, n, margin):
 
 class FixInsert(Fix):
     """fix ID group insert SEED REGION-ID count N | volfrac PHI [every M] [per K] [start STEP]
-        [radius R | radius uniform RMIN RMAX | radius gaussian MEAN SD] [density RHO] [type T]
+        [radius R | radius uniform|gaussian|lognormal A B | radius discrete R1 F1 ...] [density RHO]
+        [shape NAME [scale ...] | mix NAME1 W1 NAME2 W2 ... [fractions mass|number]] [type T]
         [v VX VY VZ] [omega WX WY WZ] [orient random|fixed]
 
     Inserts particles at random positions and orientations inside a region, without overlap (Part III
@@ -55,17 +56,23 @@ class FixInsert(Fix):
 
     * `count N`: insert N particles; `volfrac PHI`: insert particles until their volume reaches PHI times
       the region volume (the sizes are drawn up front, so the number is known at once).
-    * Sizes: `radius` (default 0.5, see `create_atoms`; the gaussian is truncated at +-3 SD), `density`
-      (default 1, mass = density x volume). All sizes are drawn once, from SEED, before insertion starts:
-      a particle keeps its size across retries (no bias towards small particles).
+    * Sizes: `radius` (default 0.5, see `create_atoms`): one size, `uniform RMIN RMAX`, `gaussian MEAN SD`
+      (truncated at +-3 SD), `lognormal MEDIAN SIGMA` (ln R normal, truncated at +-3 SIGMA) or `discrete
+      R1 F1 R2 F2 ...` (sizes in number fractions); `density` (default 1, mass = density x volume). All
+      sizes are drawn once, from SEED, before insertion starts: a particle keeps its size across retries
+      (no bias towards small particles).
     * `type` (default 1), initial `v` and `omega` (default 0), `orient random` (default) or `fixed`
       (identity quaternion).
     * New particles join `all` and the fix group, get ids above the largest existing id.
     * Walls are not tested: keep the region clear of them (the margin keeps particles inside it).
     * Shapes: `shape NAME [scale S | scale uniform A B | scale gaussian M SD]` inserts particles of a
       shape defined by the `shape` command (scale 1: the shape as defined), with random orientations;
-      the overlap test uses bounding spheres (conservative for non-spherical shapes). A mixture of
-      shapes with number fractions would add templates (module `templates`).
+      the overlap test uses bounding spheres (conservative for non-spherical shapes).
+    * Mixtures: `mix NAME1 W1 NAME2 W2 ...` draws each particle's kind from the shapes NAME (or `sphere`)
+      with weights W, mass fractions by default as LIGGGHTS's particledistribution/discrete (`fractions
+      number` for number fractions); weights are normalised to sum 1. Spheres take the `radius`
+      distribution, shapes the `scale` one; all share `density` and `type`. The kinds are drawn with the
+      sizes, up front (module `templates`).
 
     The random stream depends only on SEED (every rank draws the same candidates; each rank tests its own
     particles and the verdicts are combined), so the packing is the same whatever the number of ranks.
@@ -81,10 +88,10 @@ class FixInsert(Fix):
     style = "insert"
     stages = Stage.PRE_EXCHANGE | Stage.END_OF_STEP
     usage = ("SEED REGION-ID count N | volfrac PHI [every M] [per K] [start STEP] [radius ...] "
-             "[shape NAME [scale ...]] [density RHO] [type T] [v VX VY VZ] [omega WX WY WZ] "
-             "[orient random|fixed]")
+             "[shape NAME [scale ...] | mix NAME1 W1 ... [fractions mass|number]] [density RHO] [type T] "
+             "[v VX VY VZ] [omega WX WY WZ] [orient random|fixed]")
     COUNTS = {"count": 1, "volfrac": 1, "every": 1, "per": 1, "start": 1, "radius": 1, "density": 1,
-              "type": 1, "v": 3, "omega": 3, "orient": 1, "shape": 1, "scale": 1}
+              "type": 1, "v": 3, "omega": 3, "orient": 1, "shape": 1, "scale": 1, "mix": 2, "fractions": 1}
 
     def __init__(self, sim, fid, group, args):
         super().__init__(sim, fid, group, args)
@@ -119,31 +126,20 @@ class FixInsert(Fix):
         if orient not in ("random", "fixed"):
             raise DemError(f"{what}: orient must be random or fixed")
         self.random_orient = orient == "random"
-        # the templates (one now; a mixture would list several with number fractions)
-        if "shape" in kw:
-            if "radius" in kw:
-                raise DemError(f"{what}: give the size of shaped particles with 'scale', not 'radius'")
-            scales = RadiusDistribution(kw.get("scale", ["1"]), f"{what} scale")
-            self.templates = [ShapeTemplate(sim, kw["shape"][0], scales, density)]
-        elif "scale" in kw:
-            raise DemError(f"{what}: 'scale' needs 'shape NAME' (spheres: radius)")
-        else:
-            self.templates = [SphereTemplate(RadiusDistribution(kw.get("radius", ["0.5"]), what), density)]
+        self.templates, weights = self._templates(sim, kw, density, what)
         self.rng = np.random.default_rng(self.seed)
         if "count" in kw:
             n = int(num("count"))
             if n < 0:
                 raise DemError(f"{what}: count must be >= 0")
-            self.kinds = np.zeros(n, dtype=np.int32)
-            self.radii = self.templates[0].draw_radius(self.rng, n)
+            self.kinds, self.radii = self._draw(n, weights)
         else:
             phi = num("volfrac")
             if not 0 < phi < 1:
                 raise DemError(f"{what}: volfrac must be in (0, 1)")
             if not self.region.side_in:
                 raise DemError(f"{what}: volfrac needs a region with side in")
-            self.radii = self._draw_volume(phi * self.region.volume())
-            self.kinds = np.zeros(len(self.radii), dtype=np.int32)
+            self.kinds, self.radii = self._draw_volume(phi * self.region.volume(), weights)
         self.pending = np.arange(len(self.radii))     # particles still to insert, in order
         self.next_step = None
         self.inserted = 0
@@ -158,12 +154,66 @@ class FixInsert(Fix):
             if key not in self.COUNTS:
                 raise DemError(f"{what}: unknown keyword '{key}'{did_you_mean(key, self.COUNTS)}; usage: "
                                f"fix ID group insert {self.usage}")
-            n = RadiusDistribution.nwords(words, i) if key in ("radius", "scale") else self.COUNTS[key]
+            if key in ("radius", "scale"):
+                n = RadiusDistribution.nwords(words, i)
+            elif key == "mix":              # NAME W pairs, up to the next keyword
+                n = 0
+                while i + 1 + n < len(words) and words[i + 1 + n] not in self.COUNTS:
+                    n += 1
+                if not n:
+                    raise DemError(f"{what}: mix needs NAME WEIGHT pairs")
+            else:
+                n = self.COUNTS[key]
             if len(words[i + 1:i + 1 + n]) < n:
                 raise DemError(f"{what}: keyword '{key}' needs {n} value(s)")
             kw[key] = words[i + 1:i + 1 + n]
             i += 1 + n
         return kw
+
+    def _templates(self, sim, kw, density, what):
+        """The templates and their number fractions (None: a single template)."""
+        if "mix" in kw and "shape" in kw:
+            raise DemError(f"{what}: give either 'shape NAME' or 'mix NAME W ...', not both")
+        if "fractions" in kw and "mix" not in kw:
+            raise DemError(f"{what}: 'fractions' needs 'mix'")
+        if "shape" in kw and "radius" in kw:
+            raise DemError(f"{what}: give the size of shaped particles with 'scale', not 'radius'")
+        if "scale" in kw and "shape" not in kw and "mix" not in kw:
+            raise DemError(f"{what}: 'scale' needs 'shape NAME' or 'mix' (spheres: radius)")
+        radii = RadiusDistribution(kw.get("radius", ["0.5"]), what)
+        scales = RadiusDistribution(kw.get("scale", ["1"]), f"{what} scale")
+        if "shape" in kw:
+            return [ShapeTemplate(sim, kw["shape"][0], scales, density)], None
+        if "mix" not in kw:
+            return [SphereTemplate(radii, density)], None
+        words = kw["mix"]
+        if len(words) % 2:
+            raise DemError(f"{what}: mix takes NAME WEIGHT pairs, got '{' '.join(words)}'")
+        names, w = words[::2], np.array([self._number(x, "mix weight", what) for x in words[1::2]])
+        if (w < 0).any() or w.sum() <= 0:
+            raise DemError(f"{what}: mix weights must be >= 0, not all 0")
+        mode = kw.get("fractions", ["mass"])[0]
+        if mode not in ("mass", "number"):
+            raise DemError(f"{what}: fractions must be mass or number, got '{mode}'")
+        if not np.isclose(w.sum(), 1.0):
+            sim.warning(f"{sim.input.location + ': ' if sim.input.location else ''}{what}: mix weights sum "
+                        f"to {w.sum():g}, normalised to 1")
+        templates = [SphereTemplate(radii, density) if name == "sphere" else
+                     ShapeTemplate(sim, name, scales, density) for name in names]
+        if mode == "mass":       # number fraction of kind k ~ its mass fraction / its mean mass
+            w = w / np.array([t.mean_volume() for t in templates])
+        return templates, w / w.sum()
+
+    def _draw(self, n, weights):
+        """Kinds and sizes of n particles (one template: the sizes only, as the stream always was)."""
+        if weights is None:
+            return np.zeros(n, dtype=np.int32), self.templates[0].draw_radius(self.rng, n)
+        kinds = self.rng.choice(len(weights), size=n, p=weights).astype(np.int32)
+        radii = np.zeros(n)
+        for t, tpl in enumerate(self.templates):
+            sel = kinds == t
+            radii[sel] = tpl.draw_radius(self.rng, int(sel.sum()))
+        return kinds, radii
 
     @staticmethod
     def _number(word, key, what):
@@ -172,21 +222,30 @@ class FixInsert(Fix):
         except ValueError:
             raise DemError(f"{what}: {float_error(word, key)}") from None
 
-    def _draw_volume(self, target):
-        tpl = self.templates[0]
-        radii, total = [], 0.0
-        chunk = max(16, int(target / float(tpl.volume(tpl.distribution.bounds()[1]))) + 16)
+    def _draw_volume(self, target, weights):
+        """Kinds and sizes drawn in chunks until their volume reaches the target (the particle that
+        reaches it included)."""
+        smallest = min(t.mean_volume() for t in self.templates)
+        chunk = max(16, int(target / smallest) + 16)
+        kinds, radii, total = [], [], 0.0
         while total < target:
-            r = tpl.draw_radius(self.rng, chunk)
-            vol = np.cumsum(tpl.volume(r)) + total
-            k = int(np.searchsorted(vol, target)) + 1      # the particle that reaches the target is included
-            if k <= chunk:
-                radii.append(r[:k])
-                total = float(vol[k - 1])
+            k, r = self._draw(chunk, weights)
+            vol = np.zeros(chunk)
+            for t, tpl in enumerate(self.templates):
+                sel = k == t
+                vol[sel] = tpl.volume(r[sel])
+            vol = np.cumsum(vol) + total
+            m = int(np.searchsorted(vol, target)) + 1
+            if m <= chunk:
+                kinds.append(k[:m])
+                radii.append(r[:m])
                 break
+            kinds.append(k)
             radii.append(r)
             total = float(vol[-1])
-        return np.concatenate(radii) if radii else np.zeros(0)
+        if not radii:
+            return np.zeros(0, dtype=np.int32), np.zeros(0)
+        return np.concatenate(kinds), np.concatenate(radii)
 
     # ----- fix interface --------------------------------------------------------------------------
     def max_radius(self):
