@@ -98,7 +98,7 @@ def max_overlap(ystar, meff, reff, v):
 
 def contact_time(ystar, meff, reff, v):
     """Duration of an elastic Hertz impact at speed v: IMPACT_TIME delta_max / v, i.e. 2.868 (m*^2 / (R*
-    Y*^2 v))^(1/5). The dashpot lengthens it (measured: +1.1 % at en 0.9, +9.3 % at en 0.5): the time-step
+    Y*^2 v))^(1/5). The dashpot lengthens it (measured: +1.1 % at en 0.9, +9.4 % at en 0.5): the time-step
     check uses this, the shortest."""
     return IMPACT_TIME * max_overlap(ystar, meff, reff, v) / v
 
