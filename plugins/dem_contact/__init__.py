@@ -1,7 +1,8 @@
 """The Grains3D contact law (Part III eq. 10-16), shared by every contact geometry (spheres, walls, and
 later convex bodies, glued composites, polyhedra): coefficients, their table per type pair, and contact
 times. The force itself is computed by the inline nogil functions of `law.pxd`, applied at a contact
-record by `apply.pxd`."""
+record by `apply.pxd`. Two elastic models per type pair: Hooke (kn, en: the Grains3D law) and Hertz-Mindlin
+from material parameters (`model hertz E .. nu .. en .. mu ..`: `hertz.py`)."""
 import math
 
 import numpy as np
@@ -9,6 +10,7 @@ import numpy as np
 from dem.args import float_error, number
 from dem.errors import DemError, did_you_mean
 
+from . import hertz
 from .law import COLUMNS
 
 # columns of a coefficient row: defined once, in law.pxd
@@ -21,15 +23,28 @@ KEYWORDS = {"kn": "normal stiffness (N/m)",
                       "(1: gamma_t = gamma_n at en 0, Descantes 2022 Table 2)",
             "ks": "tangential spring stiffness (N/m), needs contact history",
             "mu_roll": "rolling resistance coefficient (dimensionless, times R_eff |F_n|)"}
+MODEL, YSTAR, GSTAR, MODEL_HOOKE, MODEL_HERTZ = (
+    COLUMNS[k] for k in ("MODEL", "YSTAR", "GSTAR", "MODEL_HOOKE", "MODEL_HERTZ"))
+KEYWORDS.update({k: hertz.KEYWORDS[k] for k in ("model", "E", "nu")})    # Hertz words (hertz.py)
 DEFAULTS = {"mu": 0.0, "gamma_t": 0.0, "beta_t": 0.0, "ks": 0.0, "mu_roll": 0.0}
 
 
 def parse(words, what, required=("kn", "en")):
-    """Parse `kn X en X [mu X] [gamma_t X] [beta_t X] [ks X] [mu_roll X]` into a dict (missing optional -> default)."""
+    """Parse `kn X en X [mu X] [gamma_t X] [beta_t X] [ks X] [mu_roll X]` into a dict (missing optional -> default),
+    or `model hertz ...` (hertz.parse: its dict has "model": "hertz"); `model hooke` is the default said aloud."""
     out = {}
     if len(words) % 2:
         raise DemError(f"{what}: coefficients come as 'keyword value' pairs, got {' '.join(words)}")
+    if hertz.is_hertz(words):
+        return hertz.parse(words, what)
     for key, value in zip(words[::2], words[1::2]):
+        if key == "model":
+            if value != "hooke":
+                raise DemError(f"{what}: model must be hertz or hooke, got '{value}'")
+            continue
+        if key in ("E", "nu"):
+            raise DemError(f"{what}: '{key}' is a material parameter of 'model hertz' (add it, or give kn and "
+                           f"en for the Hooke law)")
         if key not in KEYWORDS:
             raise DemError(f"{what}: unknown coefficient '{key}'{did_you_mean(key, KEYWORDS)}; "
                            f"known: {', '.join(KEYWORDS)}")
@@ -58,6 +73,8 @@ def frictionless(c):
     """True when mu is given but none of ks, gamma_t, beta_t: the tangential force is then zero whatever mu
     is (the law caps a trial force of -nu_t U_rt - ks xi). LAMMPS's granular styles take
     Kt = 2/7 Kn for a NULL Kt; dem keeps its coefficients explicit and warns instead."""
+    if c.get("model") == "hertz":          # its tangential spring comes from G*
+        return False
     return c.get("mu", 0.0) > 0 and not any(c.get(k, 0.0) > 0 for k in ("ks", "gamma_t", "beta_t"))
 
 
@@ -81,6 +98,8 @@ def beta(en):
 
 
 def row(c):
+    if c.get("model") == "hertz":
+        return hertz.row(c, COLUMNS, beta)
     r = np.zeros(NCOEFF)
     r[KN], r[BETA], r[EN] = c["kn"], beta(c["en"]), c["en"]
     r[MU], r[GAMMA_T] = c.get("mu", 0.0), c.get("gamma_t", 0.0)
@@ -97,3 +116,32 @@ def contact_time(kn, en, meff):
     if g >= w0:
         return math.pi / w0
     return math.pi / math.sqrt(w0 * w0 - g * g)
+
+
+def needs_history(rows):
+    """Whether coefficient rows (any array of them, last axis the columns) need tangential history: a Hooke
+    spring (ks > 0), or a Hertz row with friction (its spring kt is always there)."""
+    rows = np.asarray(rows)
+    return bool(np.any(rows[..., KS] > 0) or np.any((rows[..., MODEL] == MODEL_HERTZ) & (rows[..., MU] > 0)))
+
+
+def is_hertz_row(r):
+    """Whether a coefficient row is of the Hertz model (elementwise over an array of rows)."""
+    return np.asarray(r)[..., MODEL] == MODEL_HERTZ
+
+
+def row_contact_time(r, meff, reff, speed):
+    """Contact time of a coefficient row for a pair of reduced mass meff and radius reff: the Hooke one
+    (contact_time) or, for a Hertz row, the elastic Hertz impact at `speed` (hertz.contact_time)."""
+    if is_hertz_row(r):
+        return hertz.contact_time(r[YSTAR], meff, reff, speed)
+    return contact_time(r[KN], r[EN], meff)
+
+
+def check_speed(sim):
+    """The impact speed the time-step check assumes for Hertz rows: twice the largest particle speed at
+    setup (a head-on meeting), at least hertz.CHECK_SPEED (1 m/s; particles often start at rest)."""
+    atom = sim.atom
+    v = atom.data["v"][:atom.nlocal]
+    vmax = sim.comm.max(float(np.sqrt((v * v).sum(axis=1)).max()) if len(v) else 0.0)
+    return max(2.0 * vmax, hertz.CHECK_SPEED)

@@ -21,7 +21,10 @@ cdef enum:                 # columns of a coefficient row
     C_MU_ROLL = 5          # rolling resistance
     C_EN = 6               # restitution (kept for contact times)
     C_BETA_T = 7           # tangential damping as a fraction of critical (Descantes 2022 Table 2: 1)
-    NCOEFF = 8
+    C_MODEL = 8            # MODEL_HOOKE (the columns above) or MODEL_HERTZ (hertz below: KN, KS, GAMMA_T unused)
+    C_YSTAR = 9            # Hertz: effective Young's modulus Y* (Pa)
+    C_GSTAR = 10           # Hertz: effective shear modulus G* (Pa)
+    NCOEFF = 11
     XI_WIDTH = 3           # values of the tangential spring history xi
 
 
@@ -67,6 +70,67 @@ cdef inline double hooke(const double* c, double delta, const double* n, const d
             for d in range(3):
                 xi[d] = -(ft[d] + dampt * vt[d]) / ks
     return 0.5 * kn * delta * delta
+
+
+cdef enum:                 # c[C_MODEL]: the elastic model of a row (a value per type pair, read per contact)
+    MODEL_HOOKE = 0        # hooke above (every row made from kn, en)
+    MODEL_HERTZ = 1        # hertz below (rows made from E, nu, en: dem_contact.hertz)
+
+
+cdef inline double hertz(const double* c, double delta, const double* n, const double* vr, double meff,
+                         double reff, double* xi, double dt, bint advance, double* fn,
+                         double* ft) noexcept nogil:
+    """Hertz-Mindlin with material parameters, the default model of LIGGGHTS (`model hertz tangential
+    history`; doc/gran_model_hertz.html and doc/gran_tangential_history.html of
+    https://github.com/CFDEMproject/LIGGGHTS-PUBLIC):
+
+        kn = 4/3 Y* sqrt(R* delta),   kt = 8 G* sqrt(R* delta)
+        gamma_n = 2 sqrt(5/6) beta sqrt(Sn m*),  Sn = 2 Y* sqrt(R* delta) = 3/2 kn
+        gamma_t = 2 sqrt(5/6) beta sqrt(St m*),  St = 8 G* sqrt(R* delta) = kt
+        F_n = (kn delta - gamma_n U_rn) n
+        F_t = -min(mu |F_n|, |-gamma_t U_rt - kt xi|) t,   xi = integral of U_rt over the contact
+
+    with beta = -ln(en) / sqrt(ln(en)^2 + pi^2) in c[C_BETA] (LIGGGHTS writes it with the opposite sign and
+    a minus in gamma), R* = `reff` and m* = `meff` of the contact. The tangential spring and its sliding rule
+    are hooke's (the Coulomb cap holds the spring and the dashpot together, where LIGGGHTS caps the spring
+    and drops the dashpot while sliding): only the stiffness now grows with the overlap. Returns the
+    elastic energy, the integral of kn delta: 8/15 Y* sqrt(R*) delta^(5/2)."""
+    cdef double mu = c[C_MU]
+    cdef double a = sqrt(reff * delta)                  # contact radius
+    cdef double kn = 4.0 / 3.0 * c[C_YSTAR] * a
+    cdef double kt = 8.0 * c[C_GSTAR] * a
+    cdef double vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2]
+    cdef double fnmag = kn * delta - 2.0 * sqrt(5.0 / 6.0) * c[C_BETA] * sqrt(1.5 * kn * meff) * vn
+    cdef double vt[3]
+    cdef double dampt, ft2, cap, scale, xin
+    cdef int d
+    for d in range(3):
+        fn[d] = fnmag * n[d]
+        vt[d] = vr[d] - vn * n[d]
+    if mu == 0.0 or xi == NULL:          # no friction (the styles keep a history whenever mu > 0)
+        ft[0] = 0.0
+        ft[1] = 0.0
+        ft[2] = 0.0
+        return 0.4 * kn * delta * delta
+    dampt = 2.0 * sqrt(5.0 / 6.0) * c[C_BETA] * sqrt(kt * meff)
+    if advance:
+        xin = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2]     # stay in the current tangent plane
+        for d in range(3):
+            xi[d] -= xin * n[d]
+        for d in range(3):
+            xi[d] += vt[d] * dt
+    for d in range(3):
+        ft[d] = -kt * xi[d] - dampt * vt[d]
+    ft2 = ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]
+    cap = mu * (fnmag if fnmag > 0.0 else -fnmag)
+    if ft2 > cap * cap:
+        scale = cap / sqrt(ft2)
+        for d in range(3):
+            ft[d] *= scale
+        if advance and kt > 0.0:
+            for d in range(3):      # sliding: the spring holds the Coulomb force minus the viscous part
+                xi[d] = -(ft[d] + dampt * vt[d]) / kt
+    return 0.4 * kn * delta * delta
 
 
 cdef enum:                 # which law apply_pair_law uses (a constant at each call site)

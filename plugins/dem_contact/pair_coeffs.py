@@ -1,18 +1,22 @@
 """Per-type-pair coefficients of the Grains3D law, shared by every pair style that uses it (sphere,
 convex/gjk, ...): `pair_coeff I J kn KN en EN [mu ..] [gamma_t ..] [beta_t ..] [ks ..] [mu_roll ..]`, the check that
-every type pair is set, the need for tangential history, and the shortest contact time."""
+every type pair is set, the need for tangential history, and the shortest contact time. `model hertz E ..
+nu .. en .. mu ..` (hertz.py) only where the style takes it (`hertz_model`: R* needs a radius per body)."""
 import numpy as np
 
 from dem.args import parse_types
 from dem.errors import DemError
 
-from . import EN, KN, KS, NCOEFF, contact_time, frictionless, parse, row, warn_frictionless
+from . import (NCOEFF, check_speed, frictionless, is_hertz_row, needs_history, parse, row, row_contact_time,
+               warn_frictionless)
 
 
 class PairCoefficients:
     """Mixin of a Pair: `self.table[ti, tj]` is the coefficient row (law.pxd reads it) of types ti, tj."""
 
     coeff_usage = "pair_coeff I J kn KN en EN [mu ..] [gamma_t ..] [beta_t ..] [ks ..] [mu_roll ..]"
+    # True where the style passes R* to the law (pair_style sphere); the others refuse `model hertz`
+    hertz_model = False
 
     def init_coefficients(self):
         nt = self.sim.atom.ntypes
@@ -26,6 +30,9 @@ class PairCoefficients:
         ti = parse_types(words[0], nt, "type I")
         tj = parse_types(words[1], nt, "type J")
         law = parse(words[2:], "pair_coeff")
+        if law.get("model") == "hertz" and not self.hertz_model:
+            raise DemError(f"pair_coeff: pair_style {self.style} does not take model hertz (it has no R* for "
+                           f"shaped bodies); give kn and en (Hooke), e.g. from dem-hooke-from-hertz")
         if frictionless(law):
             warn_frictionless(self.sim, self, "pair_coeff")
         r = row(law)
@@ -45,19 +52,23 @@ class PairCoefficients:
         if missing:
             a, b = missing[0]
             raise DemError(f"pair_coeff missing for types {a} {b}")
-        return bool(np.any(self.table[1:, 1:, KS] > 0))
+        return needs_history(self.table[1:, 1:])
 
     def min_contact_time(self):
-        """Shortest T_c over type pairs, with the lightest particles present."""
+        """Shortest T_c over type pairs, with the lightest (and, for Hertz rows, smallest: T_c grows as the
+        radius) particles present; Hertz rows at the impact speed of dem_contact.check_speed."""
         atom = self.sim.atom
         n = atom.nlocal
         tmin = np.inf
         types = atom.data["type"][:n]
         masses = {t: float(atom.data["rmass"][:n][types == t].min()) for t in np.unique(types)}
+        radii = {t: float(atom.data["radius"][:n][types == t].min()) for t in np.unique(types)}
+        # collective (every rank, with or without particles): decided on the table, the same everywhere
+        speed = check_speed(self.sim) if np.any(is_hertz_row(self.table[1:, 1:])) else None
         for ta, ma in masses.items():
             for tb, mb in masses.items():
-                r = self.table[ta, tb]
-                t = contact_time(r[KN], r[EN], ma * mb / (ma + mb))
+                ra, rb = radii[ta], radii[tb]
+                t = row_contact_time(self.table[ta, tb], ma * mb / (ma + mb), ra * rb / (ra + rb), speed)
                 tmin = min(tmin, t)
         tmin = self.sim.comm.min(tmin)     # collective: every rank, with or without particles
         return tmin if np.isfinite(tmin) else None

@@ -1,11 +1,15 @@
 """Coefficients of the Grains3D law against walls, shared by every wall fix (wall/plane, wall/drum ...):
 given on the fix line for every type, or taken from `pair_coeff I I`; the per-particle tangential history
-the walls need; and the shortest contact time (m_ij = m_i against a wall)."""
+the walls need; and the shortest contact time (m_ij = m_i against a wall). `model hertz` (hertz.py): the
+wall is of the particles' material (E, nu of the fix line, or of pair_coeff I I) and R* = R_i (a plane;
+inside a drum of radius R_d the exact 1 / (1 / R_i - 1 / R_d) is larger by R_i / R_d, left out), for
+spheres only: shaped particles have no R*."""
 import numpy as np
 
 from dem.errors import DemError
 
-from . import EN, KN, KS, NCOEFF, XI_WIDTH, contact_time, frictionless, parse, row, warn_frictionless
+from . import (NCOEFF, XI_WIDTH, check_speed, frictionless, is_hertz_row, needs_history, parse, row,
+               row_contact_time, warn_frictionless)
 
 
 class WallCoefficients:
@@ -17,7 +21,11 @@ class WallCoefficients:
     def parse_law(self, words):
         what = f"fix {self.id} {self.style}"
         law = parse(words, what, required=()) if words else {}
-        if law and not {"kn", "en"} <= set(law):
+        self.where = self.sim.input.location      # this line, for errors found at the run (init_table)
+        if law.get("model") == "hertz":
+            if self.contact_law == "descantes":
+                raise DemError(f"{what}: law descantes is a Hooke law (kn, en); it does not take model hertz")
+        elif law and not {"kn", "en"} <= set(law):
             raise DemError(f"{what}: give both kn and en (or neither, to use pair_coeff I I)")
         if frictionless(law):
             warn_frictionless(self.sim, self, what)
@@ -38,8 +46,9 @@ class WallCoefficients:
             else:
                 raise DemError(f"fix {self.id} {self.style}: no coefficients given and no pair style to "
                                f"take them from")
+        self.check_hertz()
         # Descantes' law (`law descantes` of the wall fixes) has no spring: no history
-        self.use_history = bool(np.any(self.table[:, 1:, KS] > 0)) and self.contact_law == "grains3d"
+        self.use_history = needs_history(self.table[:, 1:]) and self.contact_law == "grains3d"
         if self.use_history:     # per wall and per piece of a composite (piece c of wall w: slot c nwalls + w)
             pieces = sim.shapes.max_components
             sim.atom.add_field(self.history_name, (XI_WIDTH * nwalls * pieces,), np.float64, 0.0)
@@ -51,15 +60,35 @@ class WallCoefficients:
     def history(self):
         return self.sim.atom.data[self.history_name] if self.use_history else np.zeros((1, XI_WIDTH))
 
+    def check_hertz(self):
+        """Hertz rows need R* = R_i: refuse them with law descantes and with shaped particles in the group."""
+        sim = self.sim
+        if not np.any(is_hertz_row(self.table[:, 1:])):
+            return
+        where = f"{self.where}: " if getattr(self, "where", None) else ""
+        what = f"{where}fix {self.id} {self.style}"
+        if self.contact_law == "descantes":
+            raise DemError(f"{what}: law descantes is a Hooke law (kn, en); it does not take the model hertz "
+                           f"of pair_coeff (give kn and en on the fix line)")
+        atom = sim.atom
+        n = atom.nlocal
+        shaped = (atom.data["shape"][:n] >= 0) & ((atom.data["mask"][:n] & self.groupbit) != 0)
+        if sim.comm.any(bool(np.any(shaped))):
+            raise DemError(f"{what}: model hertz is for spheres (R* = R_i), but the group has shaped particles; "
+                           f"give kn and en for this wall")
+
     def min_contact_time(self):
         atom = self.sim.atom
         n = atom.nlocal
         types = atom.data["type"][:n]
         tmin = np.inf
+        # collective (every rank, with or without particles): decided on the table, the same everywhere
+        speed = check_speed(self.sim) if np.any(is_hertz_row(self.table[0, 1:])) else None
         for t in np.unique(types):
-            m = float(atom.data["rmass"][:n][types == t].min())
-            r = self.table[0, t]
-            tmin = min(tmin, contact_time(r[KN], r[EN], m))
+            sel = types == t
+            m = float(atom.data["rmass"][:n][sel].min())
+            radius = float(atom.data["radius"][:n][sel].min())
+            tmin = min(tmin, row_contact_time(self.table[0, t], m, radius, speed))
         tmin = self.sim.comm.min(tmin)     # collective: every rank, with or without particles
         return tmin if np.isfinite(tmin) else None
 

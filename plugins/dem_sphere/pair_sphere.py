@@ -15,6 +15,7 @@ class PairSphere(PairCoefficients, Pair):
     """pair_style sphere
 
     pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [beta_t BT] [ks KS] [mu_roll MUR]
+    pair_coeff I J model hertz E E nu NU en EN mu MU [mu_roll MUR]
 
     Spheres in contact when their surfaces overlap (overlap delta, normal n along the line of centres,
     contact point in the middle of the overlap). The Grains3D law (Part III eq. 10-16) per contact:
@@ -31,7 +32,21 @@ class PairSphere(PairCoefficients, Pair):
 
         pair_style sphere
         pair_coeff * * kn 1e5 en 0.73 mu 0.55 gamma_t 2000 ks 28571
+
+    `model hertz` (keywords in any order): Hertz-Mindlin from material parameters, LIGGGHTS's default
+    model (`model hertz tangential history`), with R* = R_i R_j / (R_i + R_j), m* = m_ij and both types
+    of the one material E (Pa), nu (-1 < nu <= 0.5): Y* = E / (2 (1 - nu^2)), G* = G / (2 (2 - nu)),
+    G = E / (2 (1 + nu)). Normal force kn delta - gamma_n U_rn with kn = 4/3 Y* sqrt(R* delta) and
+    gamma_n = 2 sqrt(5/6) beta sqrt(2 Y* sqrt(R* delta) m*), beta = -ln en / sqrt(ln^2 en + pi^2); the
+    tangential spring kt = 8 G* sqrt(R* delta) on the history xi (always kept when mu > 0) with the dashpot
+    gamma_t = 2 sqrt(5/6) beta sqrt(kt m*), capped by Coulomb as above. kn, ks, gamma_t and beta_t are
+    refused with it. The time-step check takes the Hertz contact time at twice the largest speed at setup
+    (at least 1 m/s). Formulas and validation: docs/hertz.md. Example (glass beads)::
+
+        pair_coeff * * model hertz E 6.3e10 nu 0.24 en 0.9 mu 0.3
     """
+
+    hertz_model = True       # R* = R_i R_j / (R_i + R_j) goes to the law (dem_contact/hertz.py)
 
     style = "sphere"
     tallies = ("stress",)    # per-particle contact tallies for analysis (dem/tally.py)

@@ -16,7 +16,7 @@ RPM = 2.0 * math.pi / 60.0
 class FixWallDrum(WallFix, Fix):
     """fix ID group wall/drum AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate]
         [point deepest|centroid|multipoint] [law grains3d|descantes]
-        [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR]
+        [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR | model hertz E E nu NU en EN mu MU mu_roll MR]
 
     A rotating cylindrical wall (a drum) with the particles inside. AXIS is x, y or z; the axis passes
     through (C1, C2) in the two other coordinates, in x, y, z order (as `region cylinder`); RADIUS is the
@@ -44,7 +44,9 @@ class FixWallDrum(WallFix, Fix):
     would rock the particle. `point multipoint`: a polytope touches at every vertex beyond the wall, the
     deepest overlap shared and the force divided by their number, as `fix wall/plane`. `law descantes`:
     Descantes' eq. 3 at every contact point instead of the Grains3D law (no attraction, viscous friction
-    capped by Coulomb against the moving wall, no spring), as `fix wall/plane`.
+    capped by Coulomb against the moving wall, no spring), as `fix wall/plane`. `model hertz`:
+    Hertz-Mindlin as `fix wall/plane` (spheres only; the drum and its ends of the particles' material,
+    R* = r_i: the curvature of the drum, which makes R* larger by about r_i / RADIUS, is left out).
 
     Redefining the fix (same ID, e.g. `rpm 0` to fill, then `rpm 40` to rotate) keeps the drum angle;
     the ramp starts again from the redefinition. Global state kept for restarts: the drum angle and the
@@ -61,7 +63,8 @@ class FixWallDrum(WallFix, Fix):
     style = "wall/drum"
     stages = Stage.POST_FORCE | Stage.END_OF_STEP
     usage = ("AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate] [point deepest|centroid|multipoint] "
-             "[law grains3d|descantes] [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR]")
+             "[law grains3d|descantes] [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR] "
+             "[model hertz E E nu NU en EN mu MU mu_roll MR]")
 
     def __init__(self, sim, fid, group, args):
         super().__init__(sim, fid, group, args)

@@ -10,7 +10,7 @@ from .wall_fix import POINT_MODES, S, WallFix, law_name, plane
 
 class FixWallPlane(WallFix, Fix):
     """fix ID group wall/plane xplane|yplane|zplane LO HI [...] [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR]
-        [point deepest|centroid|multipoint] [law grains3d|descantes]
+        [model hertz E E nu NU en EN mu MU mu_roll MR] [point deepest|centroid|multipoint] [law grains3d|descantes]
 
     Fixed planar walls. Each `xplane LO HI` adds a wall at x = LO facing +x and one at x = HI facing -x;
     NULL skips one (`zplane 0 NULL`: a floor only). Particles touching a wall feel the Grains3D law with
@@ -34,14 +34,18 @@ class FixWallPlane(WallFix, Fix):
     `point multipoint`, 1 otherwise. The wall's law is chosen here, not taken from the pair style.
     Glued composites (pair_style glued/convex) touch with each component, Model A/B as the pair style.
     Coefficients: given here for every type, or, when left out, those of each type with itself from
-    pair_coeff. Example: `fix floor all wall/plane zplane 0.0 NULL kn 1000 en 0.5 mu 0.5 ks 285.7`."""
+    pair_coeff. Example: `fix floor all wall/plane zplane 0.0 NULL kn 1000 en 0.5 mu 0.5 ks 285.7`.
+    `model hertz E .. nu .. en .. mu ..` (as pair_style sphere's): Hertz-Mindlin against the wall, the wall
+    of the particles' material E, nu, with R* = r_i and m* = m_i; spheres only (a group with shaped
+    particles is refused), not with `law descantes`. Taken from pair_coeff I I when that is model hertz."""
 
     style = "wall/plane"
     stages = Stage.POST_FORCE
 
     def __init__(self, sim, fid, group, args):
         super().__init__(sim, fid, group, args)
-        usage = "fix ID group wall/plane xplane LO HI [yplane ..] [zplane ..] [kn .. en .. mu ..]"
+        usage = ("fix ID group wall/plane xplane LO HI [yplane ..] [zplane ..] [kn .. en .. mu ..] "
+                 "[model hertz E .. nu .. en .. mu ..]")
         axes, positions, sides = [], [], []
         i = 0
         while i < len(args) and args[i] in ("xplane", "yplane", "zplane"):
