@@ -55,6 +55,7 @@ class Balance(Command):
         if sim.comm.nprocs == 1:
             return
         before = sim.comm.balance(dims, weight, thresh)
+        sim.comm.grid_settled = True        # the user placed the cuts: the first run keeps them
         if before > thresh:
             sim.comm.exchange()
         after = sim.comm.imbalance("count")

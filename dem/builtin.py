@@ -6,6 +6,7 @@ from .create_atoms import CreateAtoms, SetCommand
 from .dump_custom import DumpCustom
 from .dump_h5 import DumpH5
 from .dump_vtk import DumpVTK
+from .dump_vtp import DumpVTP
 from .hookspecs import hookimpl
 from .fix_python import PYTHON_FIXES
 from .integrate import INTEGRATORS
@@ -19,4 +20,4 @@ from .write_data import WriteData
 @hookimpl
 def dem_styles():
     return (COMMANDS + COMPUTE_COMMANDS + [CreateAtoms, SetCommand, ReadData, WriteData] + RESTART_COMMANDS
-            + REGIONS + INTEGRATORS + PYTHON_FIXES + BALANCE_STYLES + SHAPE_STYLES + [DumpH5, DumpVTK, DumpCustom])
+            + REGIONS + INTEGRATORS + PYTHON_FIXES + BALANCE_STYLES + SHAPE_STYLES + [DumpH5, DumpVTK, DumpVTP, DumpCustom])

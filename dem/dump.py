@@ -5,12 +5,13 @@
 * ID: a name for the dump (``undump ID`` removes it).
 * group-ID: only particles of this group are written.
 * style: ``h5`` (one HDF5 file + XDMF sidecar, see :class:`dem.dump_h5.DumpH5`), ``vtk`` (one VTK
-  XML ``.vtu`` file per frame + ``.pvd`` collection, see :class:`dem.dump_vtk.DumpVTK`) or ``custom``
-  (LAMMPS text snapshots for OVITO, see :class:`dem.dump_custom.DumpCustom`).
+  XML ``.vtu`` file per frame + ``.pvd`` collection, see :class:`dem.dump_vtk.DumpVTK`), ``vtp`` (particles
+  as VTK PolyData points named for OVITO, see :class:`dem.dump_vtp.DumpVTP`) or ``custom`` (LAMMPS text
+  snapshots for OVITO, see :class:`dem.dump_custom.DumpCustom`).
 * N: write a frame every N steps (and at the start of a run when its step is a multiple of N).
 * file: where to write (style specific).
 
-Keyword of the h5 and vtk styles (``custom`` takes LAMMPS column names instead):
+Keyword of the h5, vtk and vtp styles (``custom`` takes LAMMPS column names instead):
 
 * ``fields name name ...``: the per-particle arrays to write, among ``id type position velocity omega
   orientation radius mass shape`` (default: all of them). ``position`` is always written (the points

@@ -22,10 +22,12 @@ def _little(a):
 
 
 class _Arrays:
-    """Collects DataArray elements, inline ASCII or appended base64 (UInt64 byte-count header)."""
+    """Collects DataArray elements, inline ASCII or base64 (UInt64 byte-count header), appended at the end of
+    the file or, with `inline`, in each element (OVITO's VTP reader takes no appended data)."""
 
-    def __init__(self, binary):
+    def __init__(self, binary, inline=False):
         self.binary = binary
+        self.inline = inline
         self.blocks = []
         self.offset = 0
 
@@ -43,6 +45,8 @@ class _Arrays:
         if self.binary:
             raw = np.array([a.nbytes], dtype="<u8").tobytes() + a.tobytes()
             block = base64.b64encode(raw)
+            if self.inline:
+                return f'{indent}<DataArray {attrs} format="binary">{block.decode("ascii")}</DataArray>\n'
             self.blocks.append(block)
             text = f'{indent}<DataArray {attrs} format="appended" offset="{self.offset}"/>\n'
             self.offset += len(block)
@@ -53,7 +57,7 @@ class _Arrays:
         return f'{indent}<DataArray {attrs} format="ascii">{values}</DataArray>\n'
 
     def appended(self):
-        if not self.binary:
+        if not self.binary or self.inline:
             return ""
         return '  <AppendedData encoding="base64">\n   _' + b"".join(self.blocks).decode("ascii") + \
             "\n  </AppendedData>\n"
@@ -63,7 +67,7 @@ class DumpVTK(Dump):
     """dump ID group-ID vtk N file_*.vtu [fields name ...] [format binary|ascii] [pvd file.pvd|none]
 
     Writes one VTK XML UnstructuredGrid file per frame (ParaView, VisIt, meshio read them; OVITO 3.17 does
-    not recognise them as particles: use ``dump custom`` for OVITO):
+    not recognise them as particles: use ``dump vtp`` or ``dump custom`` for OVITO):
     ``*`` in the file name is replaced by the step number (``out/grains_*.vtu`` gives
     ``out/grains_1000.vtu``); a name without ``*`` gets ``_<step>`` before its extension. Each particle is
     a point (cell VTK_VERTEX) with point data ``id type velocity omega orientation radius mass shape``
@@ -97,6 +101,7 @@ class DumpVTK(Dump):
     """
 
     style = "vtk"
+    extension, file_kind = ".vtu", "VTK XML UnstructuredGrid"
     keywords = {"fields": None, "format": 1, "pvd": 1}
 
     def __init__(self, sim, did, group, every, path, args):
@@ -104,9 +109,9 @@ class DumpVTK(Dump):
         self.pvd_path = ""        # "" = default, None = no collection
         super().__init__(sim, did, group, every, path, args)
         root, ext = os.path.splitext(self.path)
-        if ext.lower() != ".vtu":
-            raise DemError(f"dump {did}: dump vtk writes VTK XML UnstructuredGrid files: the file name "
-                           f"must end in .vtu ('{self.path}')")
+        if ext.lower() != self.extension:
+            raise DemError(f"dump {did}: dump {self.style} writes {self.file_kind} files: the file name "
+                           f"must end in {self.extension} ('{self.path}')")
         if self.path.count("*") > 1:
             raise DemError(f"dump {did}: at most one '*' in the file name ('{self.path}')")
         if "*" not in self.path:
@@ -176,7 +181,7 @@ class DumpVTK(Dump):
                 np.concatenate(types).astype(np.uint8), np.concatenate(owner).astype(np.int64))
 
     # ----- writing --------------------------------------------------------------------------------
-    def vtu_text(self, frame):
+    def frame_text(self, frame):
         points, conn, offsets, types, owner = self.geometry(frame)
         arrays = _Arrays(self.binary)
         point_fields = [f for f in self.fields if f != "position"]
@@ -228,7 +233,7 @@ class DumpVTK(Dump):
 
     def write_frame(self, frame):
         path = self.frame_path(frame.step)
-        atomic_write(path, self.vtu_text(frame))
+        atomic_write(path, self.frame_text(frame))
         if self.pvd_path is not None:
             self._collection[frame.step] = (frame.time, path)
             atomic_write(self.pvd_path, self.pvd_text())

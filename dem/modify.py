@@ -1,4 +1,6 @@
 """The list of fixes and, per stage, the fixes to call (built in init(), in input-script order)."""
+import numpy as np
+
 from .errors import DemError, unknown
 from .fix import STAGE_METHODS, Stage
 
@@ -71,6 +73,11 @@ class Modify:
         r = float(atom.data["radius"][:atom.nlocal].max()) if atom.nlocal else 0.0
         r = max([r] + [f.max_radius() for f in self.fixes])
         return self.sim.comm.max(r)
+
+    def acceleration(self):
+        """The sum of the uniform body accelerations (gravity) the fixes apply, or None."""
+        gs = [np.asarray(f.acceleration, float) for f in self.fixes if f.acceleration is not None]
+        return np.sum(gs, axis=0) if gs and np.any(np.sum(gs, axis=0)) else None
 
     def particles_removed(self):
         for fix in self.fixes:

@@ -52,6 +52,7 @@ class Update:
             sim.pair.init()
         sim.tally.update()
         sim.neighbor.init()
+        sim.comm.settle_grid()
         atom, nb = sim.atom, sim.neighbor
         continuing = not sim.comm.any(not (nb.hold_valid and len(nb.xhold) == atom.nlocal))
         nb.rebuild(self.ntimestep, wrap=not continuing)

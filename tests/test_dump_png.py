@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import dem
-from dem_process.render import convex_hulls_2d, shaped_polygons, view_basis
+from dem_process.render import PAD, convex_hulls_2d, shaped_polygons, view_basis
 
 A = 0.002          # cube edge
 BASIS = view_basis(1)          # seen from the +y side, z up: right = -x, up = +z
@@ -168,7 +168,7 @@ def _picture(tmp_path, atoms, keywords, name="p.png"):
     img = imread(tmp_path / name)[..., :3]
     img = img[:, :int(0.84 * SIZE)]            # the colour bar (from 0.86 of the width) is not counted
     blue = (img[..., 2] > 0.3) & (img[..., 0] < 0.2) & (img[..., 1] < 0.2)
-    return blue, 2 * 1.03 * VIEW / (0.82 * SIZE)
+    return blue, 2 * PAD * VIEW / (0.82 * SIZE)
 
 
 def test_png_draws_the_section_of_a_cube(tmp_path):
@@ -204,3 +204,26 @@ def test_png_sphere_of_the_shape_table_is_drawn_as_its_section_disc(tmp_path):
     blue, px = _picture(tmp_path, "shape b sphere 0.001\ncreate_atoms 1 single 0 0 0 shape b density 2500",
                         "slice 0.0006")
     assert blue.sum() * px * px == pytest.approx(math.pi * (0.001 ** 2 - 0.0006 ** 2), rel=0.06)
+
+
+def test_scale_bar_is_one_two_or_five_times_a_power_of_ten_within_a_fifth_of_the_view():
+    from dem_process.render import scale_length
+    for span, expected in ((0.1124, 0.02), (0.1, 0.02), (0.0999, 0.01), (0.26, 0.05), (3.0, 0.5), (0.0049, 0.0005)):
+        assert math.isclose(scale_length(span), expected, rel_tol=1e-12), span
+        assert scale_length(span) <= span / 5 * (1 + 1e-12)
+
+
+def test_drum_arrow_follows_the_turning_direction(tmp_path):
+    """The rim arrow is drawn for a turning drum only, and mirrored when the drum turns the other way."""
+    from PIL import Image
+    from dem_process.render import render_cross_section
+    x = np.array([[0.0, 0.0, -0.04]])
+    pics = {}
+    for spin in (0.0, 4.0, -4.0):
+        path = tmp_path / f"spin{spin}.png"
+        render_cross_section(str(path), x, np.zeros((1, 3)), [0.002], axis=1, drum_radius=0.05, spin=spin)
+        pics[spin] = np.asarray(Image.open(path).convert("L"), dtype=int)
+    top_right = (slice(60, 260), slice(380, 560))         # where the arrow goes (700 px picture)
+    dark = {s: int((p[top_right] < 128).sum()) for s, p in pics.items()}
+    assert dark[4.0] > dark[0.0] + 50 and dark[-4.0] > dark[0.0] + 50
+    assert np.any(pics[4.0] != pics[-4.0])

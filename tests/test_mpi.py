@@ -129,7 +129,7 @@ def test_dense_bed_two_ranks_matches_serial(tmp_path, serial_bed, variant):
     """Particles and contacts (pair and wall) equal at every step, state equal to round-off after 200
     steps; 'balanced' also moves the sub-box boundary (balance + fix balance) during the run."""
     if variant == "grid":
-        script = bed("bed.h5")      # default grid: the box is cut along z
+        script = bed("bed.h5")      # default grid: cut across gravity, balanced at the first run
     else:
         script = bed("bed.h5", processors="processors 2 1 1",
                      balance="balance 1.0 shift x\nfix lb all balance 50 1.0 shift x weight time")
@@ -315,3 +315,50 @@ def test_write_data_on_two_ranks_reads_back_as_on_one(tmp_path):
     assert np.array_equal(files[1]["tag"], files[2]["tag"]) and len(files[1]["tag"]) > 1000
     assert np.array_equal(files[1]["radius"], files[2]["radius"])
     assert np.abs(files[1]["x"] - files[2]["x"]).max() <= 1e-9 * D
+
+
+POUR = """
+units           si
+boundary        f f fm
+{processors}
+region          box block 0 0.01 0 0.008 0 0.04
+create_box      1 box
+region          fill block 0 0.01 0 0.008 0.02 0.036
+create_atoms    1 random 300 4821 fill radius 0.0005 density 2500
+pair_style      sphere
+pair_coeff      * * kn 2000 en 0.5 mu 0.5 ks 571.4
+fix             integrate all nve/sphere
+fix             gravity all gravity 9.81 vector 0 0 -1
+fix             walls all wall/plane xplane 0 0.01 yplane 0 0.008 zplane 0 NULL
+timestep        2e-6
+neighbor        0.0001 bin
+run             10
+"""
+
+
+def _pour_ranks(tmp_path, processors):
+    """(log text, per rank (nlocal, grid)) after POUR on 2 ranks."""
+    (tmp_path / "in.pour").write_text(POUR.format(processors=processors))
+    (tmp_path / "drive.py").write_text(
+        "import dem\n"
+        "sim = dem.Simulation(log='log.pour', screen=False)\n"
+        "sim.file('in.pour')\n"
+        "with open(f'rank{sim.comm.me}', 'w') as f:\n"
+        "    print(sim.comm.me, sim.atom.nlocal, *sim.comm.procgrid, file=f)\n")
+    res = subprocess.run([MPIEXEC, "-n", "2", sys.executable, "drive.py"], cwd=tmp_path, env=_env(),
+                         capture_output=True, text=True, timeout=TIMEOUT)
+    assert res.returncode == 0, res.stderr[-3000:]
+    ranks = [tuple(int(w) for w in (tmp_path / f"rank{r}").read_text().split()) for r in range(2)]
+    return (tmp_path / "log.pour").read_text(), ranks
+
+
+def test_default_grid_leaves_the_gravity_axis_whole_and_starts_balanced(tmp_path):
+    """Particles placed in a tall fill region would be cut along z (least surface) and all fall onto the
+    lower rank; at the first run dem cuts across gravity instead (along x, the longer side) and balances
+    the cut by count: 150 particles per rank. A grid the user gave is kept."""
+    log, ranks = _pour_ranks(tmp_path, "")
+    assert "Processor grid: 1 x 1 x 2 (2 MPI ranks)" in log
+    assert "Processor grid: 2 x 1 x 1 (2 MPI ranks), instead, as gravity points along z" in log
+    assert ranks == [(0, 150, 2, 1, 1), (1, 150, 2, 1, 1)]
+    log, ranks = _pour_ranks(tmp_path, "processors * * 2")
+    assert "instead" not in log and [r[2:] for r in ranks] == [(1, 1, 2)] * 2

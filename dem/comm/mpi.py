@@ -167,47 +167,91 @@ class CommMPI(Comm):
         """Choose the grid (once, when particles are first placed): the factorisation of the rank count
         allowed by `processors` with the least total sub-box surface, for the extent of the particles
         being placed (x) when given, else of the box: a bed filling the lower half of a tall box is cut
-        along its width, not its height."""
+        along its width, not its height. `settle_grid` may revise it at the first run."""
         if self.procgrid is not None:
             return
         dom = self.sim.domain
         dom.require_box("a parallel run")
-        prd, P = dom.prd.copy(), self.nprocs
+        prd = dom.prd.copy()
         if x is not None and len(x):
             x = np.clip(np.asarray(x, dtype=float).reshape(-1, 3), dom.lo, dom.hi)
             prd = np.maximum(np.ptp(x, axis=0), 0.05 * prd)
+        best = self._least_surface_grid(prd)
+        if best is None:
+            raise DemError(f"processors {' '.join(str(u) if u else '*' for u in self.user_grid)}: "
+                           f"{self.nprocs} ranks cannot be arranged so")
+        self._use_grid(best)
+
+    def _least_surface_grid(self, prd, uncut=None):
+        """The grid allowed by `processors` (and leaving axis `uncut` whole) with the least total sub-box
+        surface for an extent prd; None if there is none."""
+        P = self.nprocs
         best, best_area = None, None
         for px in divisors(P):
             for py in divisors(P // px):
                 grid = (px, py, P // px // py)
                 if any(u and u != g for u, g in zip(self.user_grid, grid)):
                     continue
+                if uncut is not None and grid[uncut] > 1:
+                    continue
                 area = (prd[0] * prd[1] / (grid[0] * grid[1]) + prd[1] * prd[2] / (grid[1] * grid[2])
                         + prd[0] * prd[2] / (grid[0] * grid[2]))
                 if best_area is None or area < best_area * (1 - 1e-12):
                     best, best_area = grid, area
-        if best is None:
-            raise DemError(f"processors {' '.join(str(u) if u else '*' for u in self.user_grid)}: "
-                           f"{P} ranks cannot be arranged so")
-        self.procgrid = best
-        px, py, pz = best
+        return best
+
+    def _use_grid(self, grid, why=""):
+        """Take `grid` with even cuts: this rank's place in it and its neighbours along each axis."""
+        dom = self.sim.domain
+        self.procgrid = grid
+        px, py, pz = grid
         me = self.me
         self.myloc = (me % px, (me // px) % py, me // (px * py))
-        self.split = [np.linspace(0.0, 1.0, p + 1) for p in best]
+        self.split = [np.linspace(0.0, 1.0, p + 1) for p in grid]
         self.procneigh = []
         for d in range(3):
             pair = []
             for step in (-1, 1):
                 loc = list(self.myloc)
                 loc[d] += step
-                if not 0 <= loc[d] < best[d]:
+                if not 0 <= loc[d] < grid[d]:
                     if not dom.periodic[d]:
                         pair.append(MPI.PROC_NULL)
                         continue
-                    loc[d] %= best[d]
+                    loc[d] %= grid[d]
                 pair.append(self.rank_of_loc(loc))
             self.procneigh.append(pair)
-        self.sim.print(f"Processor grid: {px} x {py} x {pz} ({P} MPI ranks)")
+        self.sim.print(f"Processor grid: {px} x {py} x {pz} ({self.nprocs} MPI ranks){why}")
+
+    def settle_grid(self):
+        """At the first run, for a grid dem chose itself (not read from a restart): under gravity, particles
+        end up in a bed across the gravity axis whatever their extent when they were placed, so a grid
+        that cuts along that axis leaves the ranks above the bed idle. Take the least-surface grid that
+        leaves that axis whole (when `processors` allows one), then balance the cuts by particle count
+        so that every rank starts with its share. `processors` set by the user is kept as given."""
+        if self.grid_settled:
+            return
+        self.grid_settled = True
+        self.setup_grid()
+        g = self.sim.modify.acceleration()
+        if g is None or self.user_grid[int(np.argmax(np.abs(g)))]:
+            return
+        down = int(np.argmax(np.abs(g)))
+        dom, atom = self.sim.domain, self.sim.atom
+        if self.procgrid[down] > 1:
+            prd = dom.prd.copy()
+            n = self.sum(atom.nlocal)
+            if n:
+                lo = np.array([self.min(v) for v in atom.data["x"][:atom.nlocal].min(axis=0, initial=np.inf)])
+                hi = np.array([self.max(v) for v in atom.data["x"][:atom.nlocal].max(axis=0, initial=-np.inf)])
+                prd = np.maximum(np.minimum(hi, dom.hi) - np.maximum(lo, dom.lo), 0.05 * prd)
+            grid = self._least_surface_grid(prd, uncut=down)
+            if grid is None:
+                return
+            self._use_grid(grid, f", instead, as gravity points along {AXES[down]}")
+        if self.sum(atom.nlocal):
+            self.balance("".join(a for d, a in enumerate(AXES) if d != down), "count", 1.0)
+        self.sim.neighbor.invalidate()
 
     def rank_of_loc(self, loc):
         px, py, _ = self.procgrid
@@ -420,13 +464,15 @@ class CommMPI(Comm):
             nsend, nrecv = way.sizes(s)
             dest, source = way.ends(s)
             sbuf = s.buffer((way.name, "send", width), nsend, width)
-            for name, rows, col in cols:
-                way.pack(s, name, rows, sbuf, col)
+            if nsend:                       # a swap at a wall edge only receives (or only sends)
+                for name, rows, col in cols:
+                    way.pack(s, name, rows, sbuf, col)
             rbuf, w, b = self._sendrecv(s, sbuf, (way.name, "recv", width), nrecv, dest, source, way.tag)
             wait += w
             nbytes += b
-            for name, rows, col in cols:
-                way.store(s, rbuf, col, rows)
+            if nrecv:
+                for name, rows, col in cols:
+                    way.store(s, rbuf, col, rows)
         st = self.stats
         st[way.name] += time.perf_counter() - t0
         st["wait"] += wait
@@ -468,9 +514,14 @@ class CommMPI(Comm):
         fields = state["fields"]
         xhold = state["neighbor"]["xhold"]
         where = xhold if xhold is not None and len(xhold) == len(fields["x"]) else fields["x"]
-        self.setup_grid(where)
         info = state.get("comm")
-        if info and tuple(info["procgrid"]) == tuple(self.procgrid):
+        grid = tuple(int(p) for p in info["procgrid"]) if info else None
+        if (self.procgrid is None and grid and int(np.prod(grid)) == self.nprocs
+                and not any(u and u != g for u, g in zip(self.user_grid, grid))):
+            self._use_grid(grid)            # the run continues on the decomposition it had
+        self.setup_grid(where)
+        self.grid_settled = True
+        if grid == tuple(self.procgrid):
             self.split = [np.array(s, dtype=float) for s in info["split"]]
         mine = self.owned_mask(where) if len(where) else np.zeros(0, bool)
         return ({name: values[mine] for name, values in fields.items()},

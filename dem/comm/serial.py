@@ -19,6 +19,7 @@ class Comm:
     me = 0
     nprocs = 1
     procgrid = (1, 1, 1)
+    grid_settled = False   # the decomposition is final (settle_grid ran, a restart or `balance` set it)
 
     def __init__(self, sim):
         self.sim = sim
@@ -84,6 +85,9 @@ class Comm:
         """Which of the (globally identical) positions x this rank owns: commands making particles build
         them identically on every rank and keep these."""
         return np.ones(len(x), dtype=bool)
+
+    def settle_grid(self):
+        """At the first run: revise a decomposition chosen by default (one rank: nothing to do)."""
 
     def balance(self, dims="xyz", weight="count", thresh=1.0):
         """Shift sub-box boundaries to even out the load; returns the imbalance before."""

@@ -44,8 +44,11 @@ class Processors(Command):
     """processors Px Py Pz
 
     The grid of sub-boxes of an MPI run (Px x Py x Pz = number of ranks); `*` lets dem choose that
-    factor (the grid with the least sub-box surface for the box shape). Example: `processors * * 1` for
-    a bed under gravity along z. Must come before particles are created; serial runs only check it."""
+    factor: the grid with the least sub-box surface for the extent of the particles first placed, and
+    at the first run, under a `fix gravity`, the least-surface grid that does not cut along gravity
+    (the particles will settle across it), its cuts balanced by particle count. Example:
+    `processors * * 2` forces a cut along z. Must come before particles are created; serial runs only
+    check it."""
     style = "processors"
     usage = "Px Py Pz"
 

@@ -31,6 +31,7 @@ class FixGravity(Fix):
             if not np.linalg.norm(direction) > 0:
                 raise a.error("the direction must not be zero")
         self.g = self.magnitude * direction / np.linalg.norm(direction)
+        self.acceleration = self.g
 
     def post_force(self):
         atom = self.sim.atom

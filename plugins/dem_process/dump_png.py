@@ -103,5 +103,6 @@ class DumpPNG(Dump):
             title += f"   slice {'xyz'[axis]} = {self.slice:.4g}"
         render_cross_section(path, arrays["position"], arrays["velocity"], arrays["radius"],
                              axis=axis, centre=centre, drum_radius=rdrum, up=up_direction(self.sim),
-                             vmax=self.vmax, title=title, size_px=self.size, section=section, **shaped)
+                             vmax=self.vmax, title=title, size_px=self.size, section=section,
+                             spin=drum.omega if drum is not None else 0.0, **shaped)
         self.last_path = os.path.abspath(path)

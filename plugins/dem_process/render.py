@@ -9,6 +9,8 @@ bodies' sections). A shaped particle is a union of convex pieces (``shapes.conve
 frame, scale 1): each piece is drawn as its own filled polygon of the particle's colour, the convex hull
 of its projected posed vertices (projection) or of the points where its triangle edges cross the plane
 (slice)."""
+import math
+
 import numpy as np
 
 from dem.errors import DemError
@@ -180,9 +182,56 @@ def shaped_polygons(shapes, shape, rel, quat, radius, basis, section=None):
     return np.array([owners[k] for k in order], dtype=np.int64), [polys[k] for k in order]
 
 
+PAD = 1.15      # half the picture's width over the drum radius (or the particles' extent): room for the guides
+
+
+def scale_length(span):
+    """The scale bar's length: 1, 2 or 5 times a power of ten, at most a fifth of `span`."""
+    raw = span / 5.0
+    k = math.floor(math.log10(raw))
+    for m in (5.0, 2.0, 1.0):
+        if m * 10.0 ** k <= raw * (1 + 1e-12):
+            return m * 10.0 ** k
+    return 10.0 ** k
+
+
+def _length_label(length):
+    return f"{length * 1e3:g} mm" if length < 0.1 else f"{length:g} m"
+
+
+def _axis_label(vec):
+    """'x', '-z'... for a unit vector along a coordinate axis, else the vector's components."""
+    k = int(np.argmax(np.abs(vec)))
+    if abs(abs(vec[k]) - 1.0) < 1e-9:
+        return ("-" if vec[k] < 0 else "") + "xyz"[k]
+    return "(" + ", ".join(f"{c:.2g}" for c in vec) + ")"
+
+
+def _draw_guides(ax, lim, right, upv, drum_radius, spin):
+    """Scale bar, picture axes and a drum's turning direction (see render_cross_section)."""
+    from matplotlib.patches import FancyArrowPatch
+    bar = scale_length(2 * lim)
+    x0, y0 = -0.95 * lim, -0.95 * lim
+    ax.plot([x0, x0 + bar], [y0, y0], color="k", lw=3, solid_capstyle="butt")
+    ax.text(x0 + 0.5 * bar, y0 + 0.02 * lim, _length_label(bar), ha="center", va="bottom", fontsize=9)
+    a, ox, oy = 0.12 * lim, 0.78 * lim, -0.95 * lim
+    for (dx, dy), vec in (((a, 0.0), right), ((0.0, a), upv)):
+        ax.add_patch(FancyArrowPatch((ox, oy), (ox + dx, oy + dy), arrowstyle="-|>", mutation_scale=10,
+                                     color="k", lw=1))
+        ax.text(ox + 1.15 * dx + (0.02 * lim if dy else 0.0), oy + 1.1 * dy, _axis_label(vec), fontsize=9,
+                ha="left" if dx else "center", va="center" if dx else "bottom")
+    if drum_radius:
+        r, t0, t1 = 1.07 * drum_radius, math.radians(35.0), math.radians(65.0)
+        if spin < 0:
+            t0, t1 = t1, t0
+        ax.add_patch(FancyArrowPatch((r * math.cos(t0), r * math.sin(t0)), (r * math.cos(t1), r * math.sin(t1)),
+                                     connectionstyle=f"arc3,rad={0.13 if spin > 0 else -0.13}",
+                                     arrowstyle="-|>", mutation_scale=14, color="k", lw=1.5))
+
+
 def render_cross_section(path, x, v, radius, axis=1, centre=(0.0, 0.0, 0.0), drum_radius=None,
                          up=(0.0, 0.0, 1.0), vmax=None, title=None, size_px=700, cmap="jet", shapes=None,
-                         shape=None, quat=None, section=None):
+                         shape=None, quat=None, section=None, spin=0.0):
     """Write a PNG of particles (positions x, velocities v, radii) seen along `axis` (0, 1, 2), centred on
     `centre`; the drum outline of radius drum_radius; colours from 0 to vmax (default: the largest
     speed).
@@ -192,7 +241,11 @@ def render_cross_section(path, x, v, radius, axis=1, centre=(0.0, 0.0, 0.0), dru
     centre[axis] + section), only the particles it cuts, each as its section. Spheres are discs; with
     `shapes` (the shape table: convex_pieces, radius, and kind: its sphere rows are discs too), `shape`
     (n,) rows (-1: sphere) and `quat` (n, 4), the shaped particles are drawn as the polygons of
-    shaped_polygons (one per convex piece)."""
+    shaped_polygons (one per convex piece).
+
+    Also drawn: a scale bar (bottom left), the directions of the picture's axes (bottom right) and, with a
+    drum whose spin (rad/s about the viewing axis, counter-clockwise as seen: positive) is not 0, an arrow
+    along its rim in the direction it turns."""
     from matplotlib.collections import EllipseCollection, PathCollection
     from matplotlib.patches import Circle
     from matplotlib.path import Path
@@ -227,11 +280,12 @@ def render_cross_section(path, x, v, radius, axis=1, centre=(0.0, 0.0, 0.0), dru
     ax.set_axis_off()
     if drum_radius:
         ax.add_patch(Circle((0.0, 0.0), drum_radius, fill=False, lw=1.5, color="k"))
-        lim = 1.03 * drum_radius
+        lim = PAD * drum_radius
     else:
-        lim = 1.03 * max(np.abs(np.r_[h, u]).max() + radius.max() if len(h) else 1.0, 1e-12)
+        lim = PAD * max(np.abs(np.r_[h, u]).max() + radius.max() if len(h) else 1.0, 1e-12)
     ax.set_xlim(-lim, lim)
     ax.set_ylim(-lim, lim)
+    _draw_guides(ax, lim, right, upv, drum_radius if spin else None, spin)
     coll = None
     if not shaped.any():
         order = np.flatnonzero(drawn)[np.argsort(depth[drawn], kind="stable")]
