@@ -235,9 +235,7 @@ BAD = [
     (BOX + "pair_style sphere\npair_coeff * * kn 1e5 en 0.5 E 1e7 nu 0.3\n", "material parameter of 'model hertz'"),
     (BOX + "pair_style sphere\npair_coeff * * model hertzian E 1e7 nu 0.3 en 0.5\n", "model must be hertz or hooke"),
     (BOX + f"pair_style sphere\npair_coeff * * {HZ} E 2e7\n", "'E' is given twice"),
-    (BOX + f"pair_style convex/gjk\npair_coeff * * {HZ}\n", "pair_style convex/gjk does not take model hertz"),
-    (BOX + f"pair_style glued/convex\npair_coeff * * {HZ}\n", "pair_style glued/convex does not take model hertz"),
-    (BOX + f"pair_style polyhedron/multipoint\npair_coeff * * {HZ}\n", "does not take model hertz"),
+    (BOX + f"pair_style polyhedron/multipoint law descantes\npair_coeff * * {HZ}\n", "law descantes is a Hooke law"),
     (BOX + "fix w all wall/plane zplane 0 NULL model hertz E 1e7 en 0.5 mu 0.3\n", "model hertz needs nu"),
     (BOX + f"fix w all wall/plane zplane 0 NULL law descantes {HZ}\n", "law descantes is a Hooke law"),
     (BOX + "fix d all wall/drum z 0.5 0.5 0.4 model hertz E 1e7 nu 0.5001 en 0.5 mu 0.3\n", "must be in (-1, 0.5]"),
@@ -251,25 +249,6 @@ def test_bad_hertz_input_is_a_clear_error_naming_the_line(script, message):
         sim.commands(script)
     assert err.value.where == f"<string>:{len(script.splitlines())}", str(err.value)
     assert message in str(err.value), str(err.value)
-
-
-def test_shaped_particles_on_a_hertz_wall_are_refused_naming_the_fix_line():
-    sim = dem.Simulation(screen=False)
-    script = f"""boundary f f f
-region box block 0 1 0 1 0 1
-create_box 1 box
-shape cube box 0.1 0.1 0.1
-create_atoms 1 single 0.5 0.5 0.5 shape cube density 1000
-pair_style convex/gjk
-pair_coeff * * kn 1e5 en 0.5
-fix w all wall/plane zplane 0 NULL {HZ}
-fix 1 all nve/shape
-timestep 1e-6
-run 1
-"""
-    with pytest.raises(dem.DemError) as err:
-        sim.commands(script)
-    assert "<string>:8: fix w wall/plane: model hertz is for spheres" in str(err.value), str(err.value)
 
 
 @pytest.mark.parametrize("wall", ["plane", "drum"])

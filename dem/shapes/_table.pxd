@@ -64,6 +64,7 @@ cdef struct TableView:
     const int* comp_row
     const double* comp_pose
     const double* half         # half sides of a centred bounding box on the body axes, at scale 1 (3 per row)
+    const double* req_rel      # radius of the sphere of the row's volume over its bounding radius
     TopoTable topo             # the polytope rows' topology
 
 
@@ -78,6 +79,11 @@ cdef class ShapeView:
 cdef inline bint round_body(const TableView* t, int s) noexcept nogil:
     """A particle of shape index s is a sphere of its own radius (s = -1, or a sphere row)."""
     return s < 0 or t.is_sphere[s] != 0
+
+
+cdef inline double equivalent_radius(const TableView* t, int s, double radius) noexcept nogil:
+    """Radius of the sphere of a particle's volume (shape index s, bounding radius `radius`): a sphere's own."""
+    return radius if s < 0 or t.is_sphere[s] != 0 else radius * t.req_rel[s]
 
 
 cdef inline void body_ref(const TableView* t, int s, ShapeRef* r) noexcept nogil:

@@ -4,7 +4,7 @@ import numpy as np
 
 COLUMNS = ("kind", "params", "voff", "nv", "core_kind", "core_params", "core_voff", "core_nv", "crust", "crust_rel",
            "radius", "is_sphere", "verts", "comp_first", "comp_count", "comp_row", "comp_pose",
-           "half")
+           "half", "req_rel")
 COMPONENT_POSE = COMP_POSE            # (for Python: table.py)
 TOPOLOGY_COLUMNS = ("poly", "voff", "nv", "foff", "nf", "eoff", "ne", "fvoff", "radius", "verts", "face_normal",
                     "face_offset", "face_first", "face_count", "face_verts", "edge_verts", "edge_faces", "box_half")
@@ -55,7 +55,8 @@ cdef class ShapeView:
     def __cinit__(self, dict arrays):
         n = len(arrays["kind"])
         defaults = {"comp_first": np.full(n, -1, np.int32), "comp_count": np.zeros(n, np.int32),   # no composite
-                    "comp_row": np.zeros(1, np.int32), "comp_pose": np.zeros((1, COMP_POSE)), "half": np.zeros((n, 3))}
+                    "comp_row": np.zeros(1, np.int32), "comp_pose": np.zeros((1, COMP_POSE)), "half": np.zeros((n, 3)),
+                    "req_rel": np.ones(n)}
         a = {k: np.ascontiguousarray(arrays[k] if k in arrays else defaults[k]) for k in COLUMNS}
         cdef const int[::1] kind = a["kind"], nv = a["nv"], core_kind = a["core_kind"]
         cdef const int[::1] core_nv = a["core_nv"], is_sphere = a["is_sphere"]
@@ -64,6 +65,7 @@ cdef class ShapeView:
         cdef const i64[::1] voff = a["voff"], core_voff = a["core_voff"]
         cdef const double[:, ::1] params = a["params"], core_params = a["core_params"], verts = a["verts"]
         cdef const double[::1] crust = a["crust"], crust_rel = a["crust_rel"], radius = a["radius"]
+        cdef const double[::1] req_rel = a["req_rel"]
         self.arrays = a
         self.t.nrows = <int>kind.shape[0]
         self.t.kind = &kind[0]
@@ -84,6 +86,7 @@ cdef class ShapeView:
         self.t.comp_row = &comp_row[0]
         self.t.comp_pose = &comp_pose[0, 0]
         self.t.half = &half[0, 0]
+        self.t.req_rel = &req_rel[0]
         if "topology" in arrays:
             a["topology"] = topology_pointers(arrays["topology"], &self.t.topo)
         else:

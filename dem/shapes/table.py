@@ -83,12 +83,25 @@ class ShapeTable:
         return {k: getattr(self, k) for k in ("kind", "params", "voff", "nv", "core_kind", "core_params",
                                                "core_voff", "core_nv", "crust", "verts")}
 
+    def req_rel(self):
+        """Per row: the radius of the sphere of its volume over its bounding radius (1 for sphere rows)."""
+        return np.where(self.is_sphere, 1.0, np.cbrt(0.75 * self.volume / np.pi) / self.radius)
+
+    def equivalent_radius(self, shape, radius):
+        """Radii of the spheres of the particles' volumes (shape indices, -1 for spheres, and bounding radii);
+        the kernels' `equivalent_radius` (_table.pxd) does the same."""
+        shape, radius = np.asarray(shape), np.asarray(radius, dtype=float)
+        if not len(self):
+            return radius.copy()
+        return np.where(shape >= 0, radius * self.req_rel()[np.maximum(shape, 0)], radius)
+
     def kernel_arrays(self):
         """The arrays the contact kernels take (core for GJK, body for walls), contiguous; an empty table
         gives one dummy row (kernels never read it: every particle is a plain sphere)."""
         a = self.arrays()
         a["radius"] = self.radius
         a["crust_rel"] = a["crust"] / a["radius"]       # crust per unit bounding radius
+        a["req_rel"] = self.req_rel()
         a["is_sphere"] = self.is_sphere.astype(np.int32)
         a.update(comp_first=self.comp_first, comp_count=self.comp_count, comp_row=self.comp_row,
                  comp_pose=self.comp_pose, half=self.half)
@@ -99,7 +112,7 @@ class ShapeTable:
                      core_voff=np.zeros(1, np.int64), core_nv=np.zeros(1, np.int32), crust=np.zeros(1),
                      radius=np.ones(1), crust_rel=np.zeros(1), is_sphere=np.ones(1, np.int32),
                      comp_first=np.full(1, -1, np.int32), comp_count=np.zeros(1, np.int32),
-                     half=np.zeros((1, 3)))
+                     half=np.zeros((1, 3)), req_rel=np.ones(1))
         a = {k: np.ascontiguousarray(v) for k, v in a.items()}
         a["topology"] = topology          # faces, edges (the polytope rows; _table.pxd TopoTable)
         return a

@@ -8,8 +8,9 @@ A Body is one side of a contact. Pair styles call apply_pair(_law), walls apply_
 is the Body b: `v` is its velocity at the contact point and `w` its spin (for rolling resistance); it takes no force
 (its x, f, t are not read). Both are one function, _apply, whose `wall` flag is a constant at each call.
 Rolling resistance acts when reff > 0 (spheres: R_eff; Grains3D applies none to shaped bodies). A row of
-the Hertz model (c[C_MODEL], law.pxd) takes reff as R* too: only the sphere style and the walls' spheres,
-which pass R_i R_j / (R_i + R_j) and R_i, may hold such rows (the shaped styles refuse `model hertz`).
+the Hertz model (c[C_MODEL], law.pxd) takes reff as R* too; `contact_radius` gives every style the reff to
+pass: R_i R_j / (R_i + R_j) of two spheres, or of the spheres of equal volume for a Hertz row between
+shaped bodies (their R* is not a local curvature: sharp edges have none), else 0.
 
 A Body's `s` (9 doubles, or NULL) receives F (x) l, the force it takes times its lever from its centre of
 mass: the per-particle contact stress tally of dem/tally.py (a rolling couple adds only an antisymmetric
@@ -18,6 +19,14 @@ from dem._math cimport cross3
 from dem.contact.record cimport Contact
 from dem_contact.law cimport (hooke, hertz, descantes, rolling_torque, LAW_DESCANTES, C_MODEL,
                               MODEL_HERTZ)
+
+
+cdef inline double contact_radius(const double* c, bint spheres, double ri, double rj) noexcept nogil:
+    """reff of a pair (see above): ri, rj are the radii of the bodies' spheres of equal volume (a sphere's own
+    radius), rj < 0 for a wall (R* = ri); `spheres` says both bodies are spheres."""
+    if not spheres and c[C_MODEL] != MODEL_HERTZ:
+        return 0.0
+    return ri if rj < 0.0 else ri * rj / (ri + rj)
 
 
 cdef struct Body:
@@ -119,7 +128,7 @@ cdef inline double _apply(const double* c, const Contact* k, const Body* a, cons
             vr[d] = ua[d] - ub[d]
     if law == LAW_DESCANTES:
         energy = descantes(c, k.delta, n, vr, meff, fn, ft)
-    elif c[C_MODEL] == MODEL_HERTZ:      # per type pair: R* is reff (spheres and walls only, see hertz)
+    elif c[C_MODEL] == MODEL_HERTZ:      # per type pair: R* is reff (contact_radius)
         energy = hertz(c, k.delta, n, vr, meff, reff, xi, dt, advance, fn, ft)
     else:
         energy = hooke(c, k.delta, n, vr, meff, xi, dt, advance, fn, ft)

@@ -1,7 +1,7 @@
 """Per-type-pair coefficients of the Grains3D law, shared by every pair style that uses it (sphere,
 convex/gjk, ...): `pair_coeff I J kn KN en EN [mu ..] [gamma_t ..] [beta_t ..] [ks ..] [mu_roll ..]`, the check that
 every type pair is set, the need for tangential history, and the shortest contact time. `model hertz E ..
-nu .. en .. mu ..` (hertz.py) only where the style takes it (`hertz_model`: R* needs a radius per body)."""
+nu .. en .. mu ..` (hertz.py): R* from the radii of the bodies' spheres of equal volume (a sphere's own)."""
 import numpy as np
 
 from dem.args import parse_types
@@ -15,8 +15,6 @@ class PairCoefficients:
     """Mixin of a Pair: `self.table[ti, tj]` is the coefficient row (law.pxd reads it) of types ti, tj."""
 
     coeff_usage = "pair_coeff I J kn KN en EN [mu ..] [gamma_t ..] [beta_t ..] [ks ..] [mu_roll ..]"
-    # True where the style passes R* to the law (pair_style sphere); the others refuse `model hertz`
-    hertz_model = False
 
     def init_coefficients(self):
         nt = self.sim.atom.ntypes
@@ -30,9 +28,9 @@ class PairCoefficients:
         ti = parse_types(words[0], nt, "type I")
         tj = parse_types(words[1], nt, "type J")
         law = parse(words[2:], "pair_coeff")
-        if law.get("model") == "hertz" and not self.hertz_model:
-            raise DemError(f"pair_coeff: pair_style {self.style} does not take model hertz (it has no R* for "
-                           f"shaped bodies); give kn and en (Hooke), e.g. from dem-hooke-from-hertz")
+        if law.get("model") == "hertz" and getattr(self, "law", "grains3d") == "descantes":
+            raise DemError(f"pair_coeff: pair_style {self.style} law descantes is a Hooke law (kn, en); it does "
+                           f"not take model hertz")
         if frictionless(law):
             warn_frictionless(self.sim, self, "pair_coeff")
         r = row(law)
@@ -62,7 +60,8 @@ class PairCoefficients:
         tmin = np.inf
         types = atom.data["type"][:n]
         masses = {t: float(atom.data["rmass"][:n][types == t].min()) for t in np.unique(types)}
-        radii = {t: float(atom.data["radius"][:n][types == t].min()) for t in np.unique(types)}
+        req = self.sim.shapes.equivalent_radius(atom.data["shape"][:n], atom.data["radius"][:n])
+        radii = {t: float(req[types == t].min()) for t in np.unique(types)}
         # collective (every rank, with or without particles): decided on the table, the same everywhere
         speed = check_speed(self.sim) if np.any(is_hertz_row(self.table[1:, 1:])) else None
         for ta, ma in masses.items():

@@ -2,8 +2,8 @@
 given on the fix line for every type, or taken from `pair_coeff I I`; the per-particle tangential history
 the walls need; and the shortest contact time (m_ij = m_i against a wall). `model hertz` (hertz.py): the
 wall is of the particles' material (E, nu of the fix line, or of pair_coeff I I) and R* = R_i (a plane;
-inside a drum of radius R_d the exact 1 / (1 / R_i - 1 / R_d) is larger by R_i / R_d, left out), for
-spheres only: shaped particles have no R*."""
+inside a drum of radius R_d the exact 1 / (1 / R_i - 1 / R_d) is larger by R_i / R_d, left out), R_i the
+radius of the particle's sphere of equal volume for a shaped particle (a sphere's own)."""
 import numpy as np
 
 from dem.errors import DemError
@@ -61,8 +61,8 @@ class WallCoefficients:
         return self.sim.atom.data[self.history_name] if self.use_history else np.zeros((1, XI_WIDTH))
 
     def check_hertz(self):
-        """Hertz rows need R* = R_i: refuse them with law descantes and with shaped particles in the group."""
-        sim = self.sim
+        """Hertz rows (R* = R_i, the radius of the particle's sphere of equal volume) are refused with law
+        descantes, a Hooke law."""
         if not np.any(is_hertz_row(self.table[:, 1:])):
             return
         where = f"{self.where}: " if getattr(self, "where", None) else ""
@@ -70,12 +70,6 @@ class WallCoefficients:
         if self.contact_law == "descantes":
             raise DemError(f"{what}: law descantes is a Hooke law (kn, en); it does not take the model hertz "
                            f"of pair_coeff (give kn and en on the fix line)")
-        atom = sim.atom
-        n = atom.nlocal
-        shaped = (atom.data["shape"][:n] >= 0) & ((atom.data["mask"][:n] & self.groupbit) != 0)
-        if sim.comm.any(bool(np.any(shaped))):
-            raise DemError(f"{what}: model hertz is for spheres (R* = R_i), but the group has shaped particles; "
-                           f"give kn and en for this wall")
 
     def min_contact_time(self):
         atom = self.sim.atom
@@ -84,10 +78,11 @@ class WallCoefficients:
         tmin = np.inf
         # collective (every rank, with or without particles): decided on the table, the same everywhere
         speed = check_speed(self.sim) if np.any(is_hertz_row(self.table[0, 1:])) else None
+        req = self.sim.shapes.equivalent_radius(atom.data["shape"][:n], atom.data["radius"][:n])
         for t in np.unique(types):
             sel = types == t
             m = float(atom.data["rmass"][:n][sel].min())
-            radius = float(atom.data["radius"][:n][sel].min())
+            radius = float(req[sel].min())
             tmin = min(tmin, row_contact_time(self.table[0, t], m, radius, speed))
         tmin = self.sim.comm.min(tmin)     # collective: every rank, with or without particles
         return tmin if np.isfinite(tmin) else None

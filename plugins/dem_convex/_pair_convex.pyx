@@ -27,8 +27,8 @@ from dem.contact.record cimport Contact
 from dem.contact._gjk cimport crust_contact, CONTACT_NONE, CONTACT_CRUST, NFEAT
 from dem.shapes._support cimport (ShapeRef, Kind, quat_to_rot, support_world, polytope_core, box_corners,
                                   corner_box, MARGIN, NPARAM, NCORNER)
-from dem.shapes._table cimport ShapeView, TableView, core_ref, round_body
-from dem_contact.apply cimport Body, apply_pair
+from dem.shapes._table cimport ShapeView, TableView, core_ref, equivalent_radius, round_body
+from dem_contact.apply cimport Body, apply_pair, contact_radius
 from dem_contact.law cimport XI_WIDTH, forget
 
 ctypedef cnp.int64_t i64
@@ -236,6 +236,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
     cdef Body A, B
     cdef const double* xi
     cdef const double* xj
+    cdef const double* cf
     cdef int a, na = 0, kn, jn
     cdef double mi, m
     con.central = False
@@ -379,9 +380,11 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
             B.t = &P.torque[3 * j]
             B.s = &P.stress[9 * j] if P.stress != NULL else NULL
             # rolling resistance between spheres only (as pair sphere); none for shaped bodies (Part III)
-            energy += apply_pair(&coeff[P.type[i], P.type[j], 0], &con, &A, &B, meff,
-                                P.radius[i] * P.radius[j] / rsum if sph_i and sph_j else 0.0,
-                                &hist[k, 0] if use_xi else NULL, dt, advance, out)
+            cf = &coeff[P.type[i], P.type[j], 0]
+            energy += apply_pair(cf, &con, &A, &B, meff,
+                                 contact_radius(cf, sph_i and sph_j, equivalent_radius(T, P.shape[i], P.radius[i]),
+                                                equivalent_radius(T, P.shape[j], P.radius[j])),
+                                 &hist[k, 0] if use_xi else NULL, dt, advance, out)
     stats[0] = ncont
     stats[1] = maxov
     stats[2] = energy

@@ -15,7 +15,7 @@ class PairConvexGJK(PairCoefficients, Pair):
     """pair_style convex/gjk [tol TOL]
 
     pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [beta_t BT] [ks KS] [mu_roll MUR]
-    (`model hertz` is refused: a shaped body has no R* at its contacts; docs/hertz.md, dem-hooke-from-hertz)
+    or `model hertz E .. nu .. en .. mu ..`: R* from the spheres of equal volume (docs/hertz.md)
 
     Contacts between particles of any shape of the shape table (`shape` command) and plain spheres.
     Broad phase on bounding spheres (the core neighbor list); then two spheres meet as in

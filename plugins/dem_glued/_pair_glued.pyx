@@ -23,10 +23,11 @@ from dem._particles cimport ParticleView, Particles
 from dem.contact.record cimport Contact
 from dem.contact._gjk cimport crust_contact, CONTACT_NONE, CONTACT_CRUST, NFEAT
 from dem.shapes._support cimport ShapeRef, Kind, quat_to_rot, NPARAM
-from dem.shapes._table cimport (ShapeView, TableView, core_ref, round_body, ncomponents, component_row,
+from dem.shapes._table cimport (ShapeView, TableView, core_ref, equivalent_radius, round_body, ncomponents,
+                               component_row,
                                 pose_component)
 from dem.contact._bounds cimport boxes_apart
-from dem_contact.apply cimport Body, apply_pair
+from dem_contact.apply cimport Body, apply_pair, contact_radius
 from dem_contact.law cimport XI_WIDTH, forget
 
 ctypedef cnp.int64_t i64
@@ -147,7 +148,8 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
     cdef double dx[3]
     cdef double g[3]
     cdef double out[6]
-    cdef double r2, rsum, r, gn, tag, meff, weight, rmin, sa, sb, maxov = stats[2]
+    cdef double r2, rsum, r, gn, tag, meff, weight, rmin, sa, sb, reff, maxov = stats[2]
+    cdef const double* cf
     cdef double ncont = 0.0, npts = 0.0, energy = 0.0, ngjk = 0.0, nepa = 0.0, npairs = 0.0, ncands = 0.0
     cdef double nspheres = 0.0, nsph_entry
     cdef const double* xa
@@ -315,13 +317,14 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 B.t = &P.torque[3 * j]
                 B.s = &P.stress[9 * j] if P.stress != NULL else NULL
                 # rolling resistance between two plain spheres only (as pair sphere); none for shaped bodies
-                rsum = P.radius[i] + P.radius[j]
+                cf = &coeff[P.type[i], P.type[j], 0]
+                reff = contact_radius(cf, round_body(T, P.shape[i]) and round_body(T, P.shape[j]),
+                                      equivalent_radius(T, P.shape[i], P.radius[i]),
+                                      equivalent_radius(T, P.shape[j], P.radius[j]))
                 for q in range(npt):
                     con[q].weight = weight
-                    energy += apply_pair(&coeff[P.type[i], P.type[j], 0], &con[q], &A, &B, meff,
-                                         P.radius[i] * P.radius[j] / rsum
-                                         if round_body(T, P.shape[i]) and round_body(T, P.shape[j]) else 0.0,
-                                         recs[q] if use_xi else NULL, dt, advance, out)
+                    energy += apply_pair(cf, &con[q], &A, &B, meff, reff, recs[q] if use_xi else NULL, dt,
+                                         advance, out)
             if resume >= 0 or h.error:
                 break
     free(cand)

@@ -16,7 +16,7 @@ class PairGluedConvex(PairCoefficients, Pair):
     """pair_style glued/convex [model A|B] [tol TOL]
 
     pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [beta_t BT] [ks KS] [mu_roll MUR]
-    (`model hertz` is refused: a shaped body has no R* at its contacts; docs/hertz.md, dem-hooke-from-hertz)
+    or `model hertz E .. nu .. en .. mu ..`: R* from the spheres of equal volume (docs/hertz.md)
 
     Contacts between glued composites (`shape NAME glued ...`, `cross3d`, ...), convex particles of any
     shape of the table and plain spheres: one pair style serves them all. Grains3D Part III sec 2.5: the

@@ -35,8 +35,8 @@ from dem.contact._polytope cimport (Polytope, TopoTable, SatResult, PolyContact,
                                     polytope_contact, POLY_MAXP,
                                     PC_FACE_FACE)
 from dem.shapes._support cimport ShapeRef, Kind, quat_to_rot, NPARAM
-from dem.shapes._table cimport ShapeView, TableView, body_ref, round_body
-from dem_contact.apply cimport Body, apply_pair_law
+from dem.shapes._table cimport ShapeView, TableView, body_ref, equivalent_radius, round_body
+from dem_contact.apply cimport Body, apply_pair_law, contact_radius
 from dem_contact.law cimport XI_WIDTH, LAW_GRAINS3D, LAW_DESCANTES
 
 ctypedef cnp.int64_t i64
@@ -177,6 +177,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
     cdef double bpt[3]
     cdef double out[6]
     cdef double r2, rsum, dist, meff, weight, si_scale, sj_scale, reff, tol2, gap
+    cdef const double* cf
     cdef double maxov = stats[2]
     cdef bint ri, rj
     cdef bint taken[4 * POLY_MAXP]
@@ -208,7 +209,6 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 sj = P.shape[j]
                 ri = round_body(T, si)
                 rj = round_body(T, sj)
-                reff = 0.0
                 typ = -1
                 si_scale = P.radius[i] if ri else P.radius[i] / T.radius[si]
                 _unscaled(&rot[i, 0], si_scale, Ri)
@@ -221,7 +221,6 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     for d in range(3):
                         con[0].n[d] = dx[d] / dist
                         con[0].p[d] = P.x[3 * i + d] - (P.radius[i] - 0.5 * con[0].delta) * con[0].n[d]
-                    reff = P.radius[i] * P.radius[j] / rsum
                 elif ri or rj:
                     npt = _sphere_poly(P, T, i, j, ri, &con[0])
                 else:
@@ -313,11 +312,13 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 BB.f = &P.f[3 * j]
                 BB.t = &P.torque[3 * j]
                 BB.s = &P.stress[9 * j] if P.stress != NULL else NULL
+                cf = &coeff[P.type[i], P.type[j], 0]
+                reff = contact_radius(cf, ri and rj, equivalent_radius(T, si, P.radius[i]),
+                                      equivalent_radius(T, sj, P.radius[j]))
                 for q in range(npt):
                     con[q].weight = weight
                     con[q].central = False
-                    stats[3] += apply_pair_law(&coeff[P.type[i], P.type[j], 0], &con[q], &BA, &BB, meff, reff,
-                                               recs[q], dt, advance, out, law)
+                    stats[3] += apply_pair_law(cf, &con[q], &BA, &BB, meff, reff, recs[q], dt, advance, out, law)
             if resume >= 0 or h.error:
                 break
     stats[2] = maxov

@@ -19,7 +19,7 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
     """pair_style polyhedron/multipoint [law grains3d|descantes] [ftol FTOL]
 
     pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [beta_t BT] [ks KS]
-    (`model hertz` is refused: a shaped body has no R* at its contacts; docs/hertz.md, dem-hooke-from-hertz)
+    or `model hertz E .. nu .. en .. mu ..`: R* from the spheres of equal volume (docs/hertz.md)
 
     Contacts of sharp polytopes (`box`, `cube`, `polyhedron`, `tetrahedron`, `pinacoid`: no rounding, no
     crust) and plain spheres, with as many contact points as the contact has (Descantes 2022 sec. 2):

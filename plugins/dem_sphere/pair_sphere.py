@@ -46,7 +46,6 @@ class PairSphere(PairCoefficients, Pair):
         pair_coeff * * model hertz E 6.3e10 nu 0.24 en 0.9 mu 0.3
     """
 
-    hertz_model = True       # R* = R_i R_j / (R_i + R_j) goes to the law (dem_contact/hertz.py)
 
     style = "sphere"
     tallies = ("stress",)    # per-particle contact tallies for analysis (dem/tally.py)

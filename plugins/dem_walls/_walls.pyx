@@ -18,9 +18,9 @@ from dem.contact._surface cimport (Surface, S_CYLINDER, S_A, S_SIDE, S_POS, S_R,
                                    S_OMEGA, S_NCOL, load_surface, bound_gap, sphere_normal, plane_touch,
                                    cylinder_touch, candidate_point, surface_depth)
 from dem.shapes._support cimport ShapeRef, BOX, POLYHEDRON, MARGIN
-from dem.shapes._table cimport (ShapeView, TableView, body_ref, pose_body, round_body, ncomponents,
+from dem.shapes._table cimport (ShapeView, TableView, body_ref, equivalent_radius, pose_body, round_body, ncomponents,
                                 component_row, pose_component)
-from dem_contact.apply cimport Body, apply_wall_law
+from dem_contact.apply cimport Body, apply_wall_law, contact_radius
 from dem_contact.law cimport XI_WIDTH, LAW_GRAINS3D, LAW_DESCANTES, forget
 
 ctypedef cnp.int64_t i64
@@ -243,7 +243,7 @@ spring, xi not read). stats: the W_ sums (STAT)."""
                     cf = &coeff[w, P.type[i], 0]
                     energy += apply_wall_law(cf, &con, &A, &B,
                                              P.rmass[i] if average or npt == 1 else P.rmass[i] / npt,
-                                             P.radius[i] if sphere else 0.0,
+                                             contact_radius(cf, sphere, equivalent_radius(T, s, P.radius[i]), -1.0),
                                              &xi[i, XI_WIDTH * (ptc[q] * nw + w)] if 0 <= ptc[q] < hpieces else NULL,
                                              dt, advance, out, law)
                     if W.spin >= 0:   # torque about the turning axis: e . (p x F) + e . rolling torque

@@ -45,7 +45,7 @@ class FixWallDrum(WallFix, Fix):
     deepest overlap shared and the force divided by their number, as `fix wall/plane`. `law descantes`:
     Descantes' eq. 3 at every contact point instead of the Grains3D law (no attraction, viscous friction
     capped by Coulomb against the moving wall, no spring), as `fix wall/plane`. `model hertz`:
-    Hertz-Mindlin as `fix wall/plane` (spheres only; the drum and its ends of the particles' material,
+    Hertz-Mindlin as `fix wall/plane` (the drum and its ends of the particles' material,
     R* = r_i: the curvature of the drum, which makes R* larger by about r_i / RADIUS, is left out).
 
     Redefining the fix (same ID, e.g. `rpm 0` to fill, then `rpm 40` to rotate) keeps the drum angle;

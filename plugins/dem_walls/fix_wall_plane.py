@@ -36,8 +36,8 @@ class FixWallPlane(WallFix, Fix):
     Coefficients: given here for every type, or, when left out, those of each type with itself from
     pair_coeff. Example: `fix floor all wall/plane zplane 0.0 NULL kn 1000 en 0.5 mu 0.5 ks 285.7`.
     `model hertz E .. nu .. en .. mu ..` (as pair_style sphere's): Hertz-Mindlin against the wall, the wall
-    of the particles' material E, nu, with R* = r_i and m* = m_i; spheres only (a group with shaped
-    particles is refused), not with `law descantes`. Taken from pair_coeff I I when that is model hertz."""
+    of the particles' material E, nu, with R* = r_i (a shaped particle: the radius of its sphere of equal
+    volume) and m* = m_i; not with `law descantes`. Taken from pair_coeff I I when that is model hertz."""
 
     style = "wall/plane"
     stages = Stage.POST_FORCE
