@@ -176,3 +176,64 @@ compute q all nematic
         sim.command(f"fix a all ave/vector 1 1 {tmp_path / 'a'} c_g[2]")
     with pytest.raises(DemError, match="unknown compute ID"):
         sim.command(f"fix a all ave/vector 1 1 {tmp_path / 'a'} c_nope")
+
+
+@pytest.mark.parametrize("axis", ["y", "z"])
+def test_radial_bins_of_a_rigid_rotation(tmp_path, axis):
+    """Rings k = 0..4 of 4 (k + 1) spheres at radius (k + 1/2) B about a line along `axis` through (C1, C2),
+    turning rigidly at OMEGA about +axis (v = OMEGA e_axis x r, the sense of wall/drum's positive rpm):
+    each radial bin of width B holds one ring, vt = OMEGA r_k, vr = 0, count 4 (k + 1), density the count
+    over the ring's volume pi ((k+1)^2 - k^2) B^2 L. Exact to the file's 10 digits (1e-9)."""
+    omega, c1, c2, length = 2.0, 0.003, -0.002, 4 * B
+    a = "xyz".index(axis)
+    b, c = [d for d in range(3) if d != a]
+    lines, rings = [], 5
+    for k in range(rings):
+        r = (k + 0.5) * B
+        for j in range(4 * (k + 1)):
+            t = 2 * np.pi * (j + 0.25) / (4 * (k + 1))
+            x = np.zeros(3)
+            x[a], x[b], x[c] = 2 * B, c1 + r * np.cos(t), c2 + r * np.sin(t)
+            centre = np.zeros(3)
+            centre[b], centre[c] = c1, c2
+            v = omega * np.cross(np.eye(3)[a], x - centre)
+            lines.append(f"create_atoms 1 single {site(*x)} radius {0.05 * B} density 2500 v {site(*v)}")
+    lo, hi = np.full(3, -6 * B), np.full(3, 6 * B)
+    lo[a], hi[a] = 0.0, length
+    sim = dem.Simulation(screen=False)
+    path = tmp_path / "r.dat"
+    sim.commands(f"""units si
+boundary {' '.join('p' if d == a else 'f' for d in range(3))}
+region box block {lo[0]} {hi[0]} {lo[1]} {hi[1]} {lo[2]} {hi[2]}
+create_box 1 box
+""" + "\n".join(lines) + f"""
+pair_style sphere
+pair_coeff * * kn 1e3 en 0.5
+timestep 1e-5
+fix p all ave/profile 1 1 {path} radial {rings} count density vr vt cylinder {axis} {c1} {c2} bounds 0 {rings * B}
+""")
+    sim.run(1)
+    d = np.loadtxt(path)
+    k = np.arange(rings)
+    assert d[:, 3] == pytest.approx((k + 0.5) * B, rel=1e-9)
+    count, dens, vr, vt = d[:, 4:].T
+    assert np.array_equal(count, 4.0 * (k + 1))
+    assert dens == pytest.approx(4 * (k + 1) / (np.pi * (2 * k + 1) * B * B * length), rel=1e-9)
+    assert np.all(np.abs(vr) < 1e-12) and vt == pytest.approx(omega * (k + 0.5) * B, rel=1e-9)
+
+
+@pytest.mark.parametrize("args, message", [
+    ("radial 4 count", "radial bins need 'cylinder A C1 C2'"),
+    ("z 4 vt", "vt need radial bins"),
+    ("radial 4 phi cylinder z 0 0", "phi are for slabs"),
+    ("z 4 count cylinder z 0 0", "'cylinder' goes with radial bins"),
+])
+def test_radial_bins_bad_input(tmp_path, args, message):
+    sim = dem.Simulation(screen=False)
+    with pytest.raises(DemError, match=message):
+        sim.commands(f"""units si
+boundary f f f
+region box block -1 1 -1 1 -1 1
+create_box 1 box
+fix p all ave/profile 1 1 {tmp_path / 'x.dat'} {args}
+""")

@@ -12,6 +12,7 @@ from .series_file import SeriesFile, sample_step
 
 class FixAveProfile(Fix):
     """fix ID group ave/profile Nevery Nfreq FILE AXIS NBIN value ... [bounds LO HI] [kinetic yes|no] [dx D | resolution K]
+    fix ID group ave/profile Nevery Nfreq FILE radial NBIN value ... cylinder A C1 C2 [bounds LO HI] [kinetic yes|no]
 
     Profiles along an axis, time-averaged and written to a file (LAMMPS's `compute chunk/atom bin/1d` with
     `fix ave/chunk`, in one fix): the group's particles are binned by their centre in NBIN slabs of equal
@@ -20,10 +21,17 @@ class FixAveProfile(Fix):
     since the last write is written, one line per bin. A bin's volume is its width times the box's cross-
     section (Descantes' L_x L_y dz).
 
+    `radial` (LAMMPS's `bin/cylinder`): bins by the distance of the centre from the line along A (x, y or
+    z) through C1 C2 (the two other coordinates, in x, y, z order), NBIN rings of equal width across
+    [LO, HI) (default 0 to the farthest box face from the line, across it); a bin's volume is its ring's
+    area times the box length along A. E.g. a drum: `radial 10 vt count ... cylinder y 0 0`. `vr vt`
+    (radial bins only): the mean radial velocity and the tangential one, counter-clockwise about +A (the
+    sense of `wall/drum`'s positive rpm). `phi` and `I` are for slabs only.
+
     Values (any of, in the order given):
     * `count` particles per bin (mean over the samples), `density` the same per unit volume;
     * `vx vy vz`, `wx wy wz`: mean velocity and spin of the bin's particles (sums over bin and samples
-      divided by the count: LAMMPS's `norm all`);
+      divided by the count: LAMMPS's `norm all`); `vr vt` the same in cylindrical components (radial);
     * `Txx Tyy Tzz T`: granular temperature, Descantes eq. 13: T_jj = <v_j^2> - <v_j>^2 with both means over
       the bin and the samples (so slow changes of the mean flow between samples count as agitation), T the
       trace; per unit mass (m^2/s^2);
@@ -57,8 +65,8 @@ class FixAveProfile(Fix):
 
     def __init__(self, sim, fid, group, args):
         super().__init__(sim, fid, group, args)
-        usage = ("fix ID group ave/profile Nevery Nfreq FILE AXIS NBIN value ... [bounds LO HI] "
-                 "[kinetic yes|no] [dx D | resolution K]")
+        usage = ("fix ID group ave/profile Nevery Nfreq FILE x|y|z|radial NBIN value ... [cylinder A C1 C2] "
+                 "[bounds LO HI] [kinetic yes|no] [dx D | resolution K]")
         what = f"fix {fid} ave/profile"
         if len(args) < 6:
             raise DemError(f"{what}: expected at least 6 arguments; usage: {usage}")
@@ -67,12 +75,13 @@ class FixAveProfile(Fix):
         if self.every < 1 or self.nfreq < 1 or self.nfreq % self.every:
             raise DemError(f"{what}: Nevery and Nfreq must be >= 1 and Nfreq a multiple of Nevery")
         path = args[2]
-        self.axis = axis_index(args[3], what)
+        self.radial = args[3] == "radial"
+        self.axis = None if self.radial else axis_index(args[3], what)
         self.nbin = _int(args[4], "NBIN", what)
         if self.nbin < 1:
             raise DemError(f"{what}: NBIN must be >= 1")
         self.values, kw, i = [], {}, 5
-        opts = {"bounds": 2, "kinetic": 1, "dx": 1, "resolution": 1}
+        opts = {"bounds": 2, "kinetic": 1, "dx": 1, "resolution": 1, "cylinder": 3}
         while i < len(args):
             w = args[i]
             if w in opts:
@@ -90,10 +99,30 @@ class FixAveProfile(Fix):
             raise DemError(f"{what}: no value to profile; usage: {usage}")
         dom = sim.domain
         dom.require_box(what)
+        self.cylinder = None
+        if self.radial:
+            if "cylinder" not in kw:
+                raise DemError(f"{what}: radial bins need 'cylinder A C1 C2' (the axis and its position)")
+            axis = axis_index(kw["cylinder"][0], what)
+            centre = np.zeros(3)
+            centre[[d for d in range(3) if d != axis]] = [_float(v, "cylinder", what) for v in kw["cylinder"][1:]]
+            self.cylinder = pb.Cylinder(axis, centre)
+        elif "cylinder" in kw:
+            raise DemError(f"{what}: 'cylinder' goes with radial bins (AXIS radial), not with AXIS {args[3]}")
+        wrong = set(self.values) & (pb.AXIAL_ONLY if self.radial else pb.RADIAL_ONLY)
+        if wrong:
+            raise DemError(f"{what}: {' '.join(sorted(wrong))} "
+                           f"{'are for slabs along x, y or z' if self.radial else 'need radial bins (AXIS radial)'}")
         if "bounds" in kw:
             self.lo, self.hi = (_float(v, "bounds", what) for v in kw["bounds"])
+        elif self.radial:
+            c = self.cylinder
+            self.lo = 0.0
+            self.hi = float(max(max(c.centre[d] - dom.lo[d], dom.hi[d] - c.centre[d]) for d in (c.b, c.c)))
         else:
             self.lo, self.hi = float(dom.lo[self.axis]), float(dom.hi[self.axis])
+        if self.radial and self.lo < 0:
+            raise DemError(f"{what}: radial bounds start at 0 or more")
         if self.hi <= self.lo:
             raise DemError(f"{what}: bounds must have HI > LO")
         if "dx" in kw and "resolution" in kw:
@@ -114,12 +143,18 @@ class FixAveProfile(Fix):
         self.acc = np.zeros((self.nbin, pb.WIDTH))
         self.last = None
         self.file = SeriesFile(sim, path, what, "# step time bin coord " + " ".join(self.values))
-        self.file.comment(f"# fix {fid} ave/profile: axis {'xyz'[self.axis]}, {self.nbin} bins of width "
+        where = (f"radial about {'xyz'[self.cylinder.axis]} through ({', '.join(f'{c:.10g}' for c in self.cylinder.centre)})"
+                 if self.radial else f"axis {'xyz'[self.axis]}")
+        self.file.comment(f"# fix {fid} ave/profile: {where}, {self.nbin} bins of width "
                           f"{self.width:.10g} from {self.lo:.10g}; averages of the samples every {self.every} "
                           f"steps, written every {self.nfreq}")
 
     def bin_volume(self):
+        """A slab's volume, or each ring's (radial)."""
         prd = np.asarray(self.sim.domain.prd, float)
+        if self.radial:
+            edges = self.lo + np.arange(self.nbin + 1) * self.width
+            return np.pi * np.diff(edges * edges) * prd[self.cylinder.axis]
         return self.width * float(np.prod([prd[d] for d in range(3) if d != self.axis]))
 
     def _solid_fraction(self, sel):
@@ -153,7 +188,7 @@ class FixAveProfile(Fix):
         stress = sim.tally.get("stress", who) if "stress" in self.tallies else None
         types = sim.tally.get("types", who) if "types" in self.tallies else None
         acc = pb.sample_sums(sim, sel, self.axis, self.lo, self.width, self.nbin, self.bin_volume(), stress,
-                             types, self.kinetic)
+                             types, self.kinetic, self.cylinder)
         acc = sim.comm.sum_values(acc.reshape(-1)).reshape(acc.shape)
         if self.kinetic:
             pb.add_kinetic(acc, self.bin_volume())

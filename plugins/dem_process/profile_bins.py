@@ -7,9 +7,11 @@ from .compute_contact_types import type_ends
 
 # accumulator columns: name -> width
 SUMS = {"n": 1, "v": 3, "v2": 3, "w": 3, "d": 1, "rho": 1, "stress": 6, "ends": 3, "phi": 1, "samples": 1,
-        "mvv": 6, "mv": 3, "m": 1}      # the last three: one sample's momenta for its kinetic stress
-VALUES = ("count", "density", "vx", "vy", "vz", "wx", "wy", "wz", "Txx", "Tyy", "Tzz", "T", "phi",
+        "vc": 2, "mvv": 6, "mv": 3, "m": 1}      # the last three: one sample's momenta for its kinetic stress
+VALUES = ("count", "density", "vx", "vy", "vz", "wx", "wy", "wz", "vr", "vt", "Txx", "Tyy", "Tzz", "T", "phi",
           *STRESS_NAMES, "p", "I", "zs", "zd", "zt", "ztot", "ziso")
+RADIAL_ONLY = {"vr", "vt"}          # the velocity in cylindrical components: radial bins only
+AXIAL_ONLY = {"phi", "I"}           # slab geometry (grid passes per slab, the gradient along the axis)
 NEEDS_STRESS = set(STRESS_NAMES) | {"p", "I"}
 NEEDS_TYPES = {"zs", "zd", "zt", "ztot", "ziso"}
 
@@ -25,9 +27,36 @@ def layout():
 LAYOUT, WIDTH = layout()
 
 
-def bin_index(x, axis, lo, width, nbin):
-    """Bin of each centre along axis, -1 outside [lo, lo + nbin width)."""
-    b = np.floor((x[:, axis] - lo) / width).astype(np.int64)
+class Cylinder:
+    """Radial bins: the distance of each centre from the line along `axis` through `centre` (3 values; the
+    one along the axis is not used), and the velocity in cylindrical components."""
+
+    def __init__(self, axis, centre):
+        self.axis = axis
+        self.centre = np.asarray(centre, float)
+        self.b, self.c = [d for d in range(3) if d != axis]
+
+    def offsets(self, x):
+        return x[:, self.b] - self.centre[self.b], x[:, self.c] - self.centre[self.c]
+
+    def coord(self, x):
+        db, dc = self.offsets(x)
+        return np.hypot(db, dc)
+
+    def radial_tangential(self, x, v):
+        """(v_r, v_t) per particle: v_t along e_axis x e_r (counter-clockwise about +axis); 0 on the axis."""
+        db, dc = self.offsets(x)
+        r = np.hypot(db, dc)
+        safe = np.where(r > 0, r, 1.0)
+        er = np.zeros((len(r), 3))
+        er[:, self.b], er[:, self.c] = db / safe, dc / safe
+        et = np.cross(np.eye(3)[self.axis], er)
+        return np.einsum("ij,ij->i", er, v), np.einsum("ij,ij->i", et, v)
+
+
+def bin_index(coord, lo, width, nbin):
+    """Bin of each coordinate, -1 outside [lo, lo + nbin width)."""
+    b = np.floor((coord - lo) / width).astype(np.int64)
     b[(b < 0) | (b >= nbin)] = -1
     return b
 
@@ -40,22 +69,26 @@ def _add(acc, key, b, values, nbin):
 
 
 def sample_sums(sim, sel, axis, lo, width, nbin, bin_volume, tally_stress=None, tally_types=None,
-                kinetic=False):
+                kinetic=False, cylinder=None):
     """This rank's (nbin, WIDTH) sums of one sample over the selected owned particles (phi and samples
     are left to the caller): counts, velocity moments, spins, d_eq and density sums, the bin's contact
-    stress (compression positive, per bin volume), with `kinetic` the momenta for add_kinetic, and the
-    contact ends by kind."""
+    stress (compression positive, per bin volume: a number, or one per bin), with `kinetic` the momenta
+    for add_kinetic, and the contact ends by kind. Bins along `axis`, or with `cylinder` (a Cylinder) by
+    the distance from its axis, adding the radial and tangential velocity sums."""
     atom = sim.atom
     n = atom.nlocal
     acc = np.zeros((nbin, WIDTH))
     x = atom.data["x"][:n][sel]
-    b = bin_index(x, axis, lo, width, nbin)
+    b = bin_index(x[:, axis] if cylinder is None else cylinder.coord(x), lo, width, nbin)
     keep = b >= 0
     b = b[keep]
     if not len(b):
         return acc
     pick = np.flatnonzero(sel)[keep]
+    volume_of = np.broadcast_to(np.asarray(bin_volume, float), (nbin,))[b][:, None]    # each particle's bin
     v = atom.data["v"][pick]
+    if cylinder is not None:
+        _add(acc, "vc", b, np.column_stack(cylinder.radial_tangential(x[keep], v)), nbin)
     m = atom.data["rmass"][pick]
     vol = volumes(sim, atom.data["shape"][pick], atom.data["radius"][pick])
     _add(acc, "n", b, np.ones(len(b)), nbin)
@@ -68,7 +101,7 @@ def sample_sums(sim, sel, axis, lo, width, nbin, bin_volume, tally_stress=None, 
         t = tally_stress[pick].reshape(-1, 3, 3)
         t = -0.5 * (t + np.transpose(t, (0, 2, 1)))
         s = np.stack([t[:, a, c] for a, c in SYM6], axis=1)
-        _add(acc, "stress", b, s / bin_volume, nbin)
+        _add(acc, "stress", b, s / volume_of, nbin)
     if kinetic:
         _add(acc, "mvv", b, m[:, None] * np.stack([v[:, a] * v[:, c] for a, c in SYM6], axis=1), nbin)
         _add(acc, "mv", b, m[:, None] * v, nbin)
@@ -84,7 +117,7 @@ def add_kinetic(acc, bin_volume):
     mvv, mv, m = acc[:, LAYOUT["mvv"]], acc[:, LAYOUT["mv"]], acc[:, LAYOUT["m"]][:, 0]
     safe = np.where(m > 0, m, 1.0)
     kin = mvv - np.stack([mv[:, a] * mv[:, c] for a, c in SYM6], axis=1) / safe[:, None]
-    acc[:, LAYOUT["stress"]] += np.where(m[:, None] > 0, kin, 0.0) / bin_volume
+    acc[:, LAYOUT["stress"]] += np.where(m[:, None] > 0, kin, 0.0) / np.reshape(bin_volume, (-1, 1))
     for key in ("mvv", "mv", "m"):
         acc[:, LAYOUT[key]] = 0.0
 
@@ -105,7 +138,8 @@ def inertial_number(centres, vmean, axis, pressure, d, rho):
 
 
 def profiles(acc, centres, axis, bin_volume):
-    """Value name -> profile (nbin,) from the time-summed accumulators."""
+    """Value name -> profile (nbin,) from the time-summed accumulators (bin_volume: a number or one per
+    bin; axis None for radial bins, which have no inertial number)."""
     ns = max(acc[0, LAYOUT["samples"]][0], 1.0)
     n = acc[:, LAYOUT["n"]][:, 0]
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -118,7 +152,8 @@ def profiles(acc, centres, axis, bin_volume):
         d = acc[:, LAYOUT["d"]][:, 0] * per
         rho = acc[:, LAYOUT["rho"]][:, 0] * per
         w = acc[:, LAYOUT["w"]] * per[:, None]
-    out = {"count": n / ns, "density": n / ns / bin_volume}
+        vc = acc[:, LAYOUT["vc"]] * per[:, None]
+    out = {"count": n / ns, "density": n / ns / np.asarray(bin_volume, float), "vr": vc[:, 0], "vt": vc[:, 1]}
     for c, name in enumerate("xyz"):
         out["v" + name] = v[:, c]
         out["w" + name] = w[:, c]
@@ -128,7 +163,8 @@ def profiles(acc, centres, axis, bin_volume):
     for c, name in enumerate(STRESS_NAMES):
         out[name] = stress[:, c]
     out["p"] = stress[:, :3].mean(axis=1)
-    out["I"] = inertial_number(centres, v, axis, stress[:, axis], d, rho)
+    if axis is not None:
+        out["I"] = inertial_number(centres, v, axis, stress[:, axis], d, rho)
     zs, zd, zt = ends[:, 0], ends[:, 1], ends[:, 2]
     out.update(zs=zs, zd=zd, zt=zt, ztot=zs + zd + zt, ziso=zs + 2 * zd + 3 * zt)
     return out
