@@ -1,9 +1,9 @@
-"""Rotating-drum benchmark: particle-steps per second of the 3000-sphere drum of inputs/in.drum (Part III
-Table 6: kn 1e5, dt 2e-6, R = 50 mm, 24 mm periodic) on one core, while it rotates at 40 rpm.
+"""Rotating-drum benchmark: particle-steps per second of the 3000-sphere drum of `inputs/in.drum -var shape
+sphere` (Part III Table 6: kn 1e5, dt 2e-6, R = 50 mm, 24 mm periodic) on one core, while it rotates at 40 rpm.
 
     python benchmarks/drum.py [--N 3000] [--steps 20000] [--repeats 3] [--rpm 40]
 
-The bed is filled and settled once (0.17 s of physical time, as the default in.drum), then the rotating
+The bed is filled and settled once (0.17 s of physical time, as in.drum), then the rotating
 phase is timed `repeats` times from the same settled state (the first 0.05 s of rotation: the bed turns
 as a rigid body and starts to flow); the median is printed with the stage times of the last run.
 """

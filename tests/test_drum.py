@@ -497,3 +497,103 @@ def test_drum_cubes_input_runs(tmp_path):
     drum = sim.modify.find("drum")
     assert drum.ncontacts > 5 and drum.max_overlap < 0.01
     assert (tmp_path / "drum_cubes_final.png").exists()
+
+
+@pytest.mark.parametrize("shape, n", [("cross3d", 40), ("sphere", 100)])
+def test_main_drum_input_runs(tmp_path, monkeypatch, shape, n):
+    """inputs/in.drum (the README's main job), shortened: crosses (its default) and spheres are inserted,
+    settle on the drum wall and turn; every output is written; the final picture (the mid-plane section) is
+    not the last periodic one; the script's own shape check names a wrong shape."""
+    import os
+    script = os.path.join(os.path.dirname(__file__), os.pardir, "inputs", "in.drum")
+    monkeypatch.chdir(tmp_path)
+    sim = dem.Simulation(screen=False, variables=[("shape", [shape]), ("N", [str(n)]), ("W", ["0.012"]), ("fill", ["0.16"]),
+                                                  ("settle", ["0.04"]), ("rotate", ["0.004"])])
+    sim.file(script)
+    types = sim.gather("type")
+    bed, wall = types == 1, types == 2
+    assert bed.sum() == n and wall.sum() > 200               # the bed and the rough wall's spheres
+    assert (sim.gather("shape")[bed] >= 0).all() == (shape != "sphere")
+    x, v = sim.gather("x"), sim.gather("v")
+    assert np.all(np.hypot(x[bed, 0], x[bed, 2]) < R)
+    # the wall's spheres turn with the drum, on the wall
+    assert np.allclose(np.hypot(x[wall, 0], x[wall, 2]), R - 0.0015, rtol=1e-12)
+    om = sim.modify.find("drum").omega
+    assert np.allclose(np.linalg.norm(v[wall], axis=1), om * (R - 0.0015), rtol=1e-12)
+    assert sim.pair.ncontacts > 5                             # the bed lies on the wall's spheres
+    for name in ("drum.dat", "drum.h5", "drum.xdmf", "drum_0.png", "drum_final.png"):
+        assert (tmp_path / name).stat().st_size > 0, name
+    assert (tmp_path / "drum_0.png").read_bytes() != (tmp_path / "drum_final.png").read_bytes()
+    sim.close()
+
+
+def test_main_drum_input_refuses_an_unknown_shape(tmp_path, monkeypatch):
+    import os
+    script = os.path.join(os.path.dirname(__file__), os.pardir, "inputs", "in.drum")
+    monkeypatch.chdir(tmp_path)
+    sim = dem.Simulation(screen=False, variables=[("shape", ["cube"])])
+    sim.file(script)
+    assert sim.input.quit_status == 2 and sim.atom.natoms == 0
+
+
+CARRY = """
+boundary f p f
+region box block -0.06 0.06 0 0.01 -0.06 0.06
+create_box 2 box
+shape c cube 0.002
+create_atoms 2 single 0.03 0.005 -0.0385 radius 0.0015 density 2500
+create_atoms 2 single -0.0485 0.002 0 shape c density 2500 quat 0.9238795 0 0.3826834 0
+create_atoms 1 single 0 0.005 0 radius 0.001 density 2500
+group bed type 1
+group wall type 2
+pair_style convex/gjk
+pair_coeff * * {LAW}
+fix integ {integ} nve/shape
+fix drum {fixgroup} wall/drum y 0 0 {R} rpm 40 ramp 0.01 carry wall {LAW}
+timestep 2e-5
+thermo 0
+"""
+
+
+def test_carried_particles_turn_with_the_drum():
+    """`carry GROUP`: after 2000 steps through a ramp, each carried particle sits at its start turned by the
+    drum's angle f_drum[angle] (exact trapezoid of the linear ramp: to round-off, 1e-12 of R), moves at
+    Omega e_y x r and spins at Omega e_y; a shaped one's orientation is turned by the same angle; the bed
+    particle (no gravity, no contact) stays where it is."""
+    sim = dem.Simulation(screen=False)
+    sim.commands(CARRY.format(LAW=LAW, R=R, integ="bed", fixgroup="bed"))
+    order = np.argsort(sim.atom.local("tag"))
+    x0 = sim.atom.local("x")[order].copy()
+    q0 = sim.atom.local("quat")[order].copy()
+    sim.run(2000)
+    order = np.argsort(sim.atom.local("tag"))
+    x, v = sim.atom.local("x")[order], sim.atom.local("v")[order]
+    w, q = sim.atom.local("omega")[order], sim.atom.local("quat")[order]
+    drum = sim.modify.find("drum")
+    th, om = drum.angle, drum.omega
+    assert om == pytest.approx(40 * 2 * math.pi / 60, rel=1e-15)
+    assert th == pytest.approx(om * (sim.update.time - 0.005), rel=1e-12)      # ramp over 0.01 s
+    # a turn by th about +y: (z, x) -> (z cos - x sin, z sin + x cos)
+    c, s = math.cos(th), math.sin(th)
+    for k in (0, 1):
+        expect = np.array([s * x0[k, 2] + c * x0[k, 0], x0[k, 1], c * x0[k, 2] - s * x0[k, 0]])
+        assert np.abs(x[k] - expect).max() < 1e-12 * R
+        assert np.abs(v[k] - om * np.cross([0.0, 1.0, 0.0], x[k])).max() < 1e-12 * om * R
+        assert np.abs(w[k] - [0.0, om, 0.0]).max() < 1e-12 * om
+    # the cube's orientation: the turn about y composed with its start (w x y z, scalar first)
+    h = np.array([math.cos(th / 2), 0.0, math.sin(th / 2), 0.0])
+    hw, hv, qw, qv = h[0], h[1:], q0[1, 0], q0[1, 1:]
+    expect = np.r_[hw * qw - hv @ qv, hw * qv + qw * hv + np.cross(hv, qv)]
+    assert np.abs(q[1] - expect).max() < 1e-12
+    assert np.abs(x[2] - x0[2]).max() < 1e-15        # no gravity, no contact: the bed sphere stays put
+
+
+@pytest.mark.parametrize("integ, fixgroup, message", [
+    ("all", "bed", "fix integ nve/shape integrates particles of group wall"),
+    ("bed", "all", "the carried particles are in the fix's group all"),
+])
+def test_carried_group_must_be_the_drums_alone(integ, fixgroup, message):
+    sim = dem.Simulation(screen=False)
+    sim.commands(CARRY.format(LAW=LAW, R=R, integ=integ, fixgroup=fixgroup))
+    with pytest.raises(DemError, match=message):
+        sim.run(1)

@@ -5,7 +5,7 @@ import numpy as np
 
 import dem_contact
 from dem.args import Args
-from dem.errors import did_you_mean
+from dem.errors import DemError, did_you_mean
 from dem.fix import Fix, Stage
 
 from .wall_fix import POINT_MODES, WallFix, cylinder, law_name, plane, turning
@@ -15,7 +15,7 @@ RPM = 2.0 * math.pi / 60.0
 
 class FixWallDrum(WallFix, Fix):
     """fix ID group wall/drum AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate]
-        [point deepest|centroid|multipoint] [law grains3d|descantes]
+        [carry GROUP] [point deepest|centroid|multipoint] [law grains3d|descantes]
         [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR | model hertz E E nu NU en EN mu MU mu_roll MR]
 
     A rotating cylindrical wall (a drum) with the particles inside. AXIS is x, y or z; the axis passes
@@ -28,6 +28,10 @@ class FixWallDrum(WallFix, Fix):
       (default 0: full rate at once).
     * `ends LO HI fixed|rotate`: flat end walls at AXIS = LO (facing +AXIS) and HI (facing -AXIS), at rest
       or rotating with the drum. Without `ends`, make the box periodic along the axis.
+    * `carry GROUP`: the particles of GROUP turn with the drum as one rigid body (positions, velocities
+      Omega e_axis x r, spins Omega e_axis, orientations), whatever the forces on them: a layer of
+      particles set along the wall makes it rough, as a real drum's (a smooth wall lets the bed slip).
+      GROUP must be integrated by no other fix and lie outside the fix's own group (the bed).
 
     The wall surface moves with the velocity Omega e_axis x r of the drum at the contact point; it
     enters the contact's relative velocity, so the tangential (friction) force drags the bed along
@@ -61,8 +65,9 @@ class FixWallDrum(WallFix, Fix):
     """
 
     style = "wall/drum"
-    stages = Stage.POST_FORCE | Stage.END_OF_STEP
-    usage = ("AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate] [point deepest|centroid|multipoint] "
+    stages = Stage.POST_FORCE | Stage.INTEGRATE | Stage.END_OF_STEP
+    usage = ("AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate] [carry GROUP] "
+             "[point deepest|centroid|multipoint] "
              "[law grains3d|descantes] [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR] "
              "[model hertz E E nu NU en EN mu MU mu_roll MR]")
 
@@ -81,6 +86,7 @@ class FixWallDrum(WallFix, Fix):
         self.ramp = 0.0
         self.ends = None
         self.ends_rotate = False
+        self.carry = None         # (group name, bit) of the particles turned with the drum
         self.point = 0
         i, law = 4, []
         while i < len(a):
@@ -100,6 +106,9 @@ class FixWallDrum(WallFix, Fix):
                 self.ends = (lo, hi)
                 self.ends_rotate = a[i + 3] == "rotate"
                 i += 4
+            elif key == "carry":
+                self.carry = (a[i + 1], sim.groups.bit(a[i + 1]))
+                i += 2
             elif key == "point":
                 if a[i + 1] not in POINT_MODES:
                     raise a.error(f"point must be {', '.join(POINT_MODES)}, got '{a[i + 1]}'")
@@ -112,7 +121,7 @@ class FixWallDrum(WallFix, Fix):
                 law += a.words[i:i + 2]
                 i += 2
             else:
-                known = ["rpm", "omega", "ramp", "ends", "point", "law"] + list(dem_contact.KEYWORDS)
+                known = ["rpm", "omega", "ramp", "ends", "carry", "point", "law"] + list(dem_contact.KEYWORDS)
                 raise a.error(f"unknown keyword '{key}'{did_you_mean(key, known)}")
         self.parse_law(law)
         self.nwalls = 1 + (2 if self.ends else 0)
@@ -152,6 +161,60 @@ class FixWallDrum(WallFix, Fix):
         if self.ends is None and not sim.domain.periodic[self.axis]:
             sim.warning(f"fix {self.id} wall/drum: no end walls and the box is not periodic along "
                         f"{'xyz'[self.axis]}: particles can leave through the open ends")
+        if self.carry is not None:
+            self.check_carry()
+
+    def check_carry(self):
+        """The carried group is moved by this fix alone, and is not the wall's to push."""
+        sim = self.sim
+        name, bit = self.carry
+        mask = sim.atom.data["mask"][:sim.atom.nlocal]
+        carried = (mask & bit) != 0
+        what = f"fix {self.id} wall/drum carry {name}"
+        if sim.comm.any(bool(np.any(carried & ((mask & self.groupbit) != 0)))):
+            raise DemError(f"{what}: the carried particles are in the fix's group {self.group}, so the wall "
+                           f"would push them too: give the fix the bed's group")
+        for fix in sim.modify.fixes:
+            if fix is not self and fix.time_integrate and \
+                    sim.comm.any(bool(np.any(carried & ((mask & fix.groupbit) != 0)))):
+                raise DemError(f"{what}: fix {fix.id} {fix.style} integrates particles of group {name}, "
+                               f"which the drum moves: give that fix the bed's group")
+
+    def integrate(self):
+        """Turn the carried particles with the drum over this step (the angle end_of_step adds); velocities
+        and spins those of the drum at the end of the step, when the next forces are computed."""
+        if self.carry is None:
+            return
+        atom = self.sim.atom
+        n = atom.nlocal
+        sel = np.flatnonzero((atom.data["mask"][:n] & self.carry[1]) != 0)
+        if not len(sel):
+            return
+        dt = self.sim.update.dt
+        t0 = self.elapsed
+        dtheta = 0.5 * (self.omega_at(t0) + self.omega_at(t0 + dt)) * dt
+        w = self.omega_at(t0 + dt)
+        a = self.axis
+        b, c = (a + 1) % 3, (a + 2) % 3          # e_a = e_b x e_c: a turn by dtheta in the (b, c) plane
+        x = atom.data["x"]
+        rb, rc = x[sel, b] - self.centre[b], x[sel, c] - self.centre[c]
+        cs, sn = math.cos(dtheta), math.sin(dtheta)
+        rb, rc = cs * rb - sn * rc, sn * rb + cs * rc
+        x[sel, b], x[sel, c] = self.centre[b] + rb, self.centre[c] + rc
+        v = atom.data["v"]
+        v[sel] = 0.0
+        v[sel, b], v[sel, c] = -w * rc, w * rb
+        om = atom.data["omega"]
+        om[sel] = 0.0
+        om[sel, a] = w
+        if "quat" in atom.data:                  # q <- (turn about e_a) q
+            q = atom.data["quat"][sel]
+            h = np.zeros(4)
+            h[0], h[1 + a] = math.cos(0.5 * dtheta), math.sin(0.5 * dtheta)
+            out = np.empty_like(q)
+            out[:, 0] = h[0] * q[:, 0] - h[1:] @ q[:, 1:].T
+            out[:, 1:] = h[0] * q[:, 1:] + q[:, :1] * h[1:] + np.cross(h[1:], q[:, 1:])
+            atom.data["quat"][sel] = out
 
     def surfaces(self):
         """The drum (0) and its ends (1: LO facing +AXIS, 2: HI facing -AXIS), turning at the current rate
