@@ -234,9 +234,9 @@ class CommMPI(Comm):
         self.grid_settled = True
         self.setup_grid()
         g = self.sim.modify.acceleration()
-        if g is None or self.user_grid[int(np.argmax(np.abs(g)))]:
+        down = int(np.argmax(np.abs(g))) if g is not None else None
+        if down is None or self.user_grid[down]:
             return
-        down = int(np.argmax(np.abs(g)))
         dom, atom = self.sim.domain, self.sim.atom
         if self.procgrid[down] > 1:
             prd = dom.prd.copy()
