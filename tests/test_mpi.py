@@ -362,3 +362,56 @@ def test_default_grid_leaves_the_gravity_axis_whole_and_starts_balanced(tmp_path
     assert ranks == [(0, 150, 2, 1, 1), (1, 150, 2, 1, 1)]
     log, ranks = _pour_ranks(tmp_path, "processors * * 2")
     assert "instead" not in log and [r[2:] for r in ranks] == [(1, 1, 2)] * 2
+
+
+ROUGH_DRUM = """
+units           si
+boundary        f p f
+region          box block -0.011 0.011 0 0.005 -0.011 0.011
+create_box      2 box
+variable        i loop 24
+label           ring
+create_atoms    2 single $(0.009*cos(2*PI*v_i/24)) 0.002 $(0.009*sin(2*PI*v_i/24)) radius 0.001 density 2500
+next            i
+jump            SELF ring
+group           wall type 2
+region          low block -0.005 0.005 EDGE EDGE -0.0075 -0.003
+create_atoms    1 random 12 4821 low radius 0.0008 density 2500
+group           bed type 1
+pair_style      sphere
+pair_coeff      * * kn 2000 en 0.5 mu 0.5 ks 571.4
+fix             integrate bed nve/sphere
+fix             gravity bed gravity 9.81 vector 0 0 -1
+fix             drum bed wall/drum y 0 0 0.01 rpm 300 carry wall kn 2000 en 0.5 mu 0.5 ks 571.4
+timestep        2e-6
+thermo          1000
+thermo_style    custom step atoms contacts ke
+thermo_modify   format float %.17g
+dump            d all h5 10000 rough.h5
+run             10000
+"""
+
+
+def test_rough_drum_wall_carried_across_ranks(tmp_path):
+    """wall/drum carry on 2 ranks: the wall's 24 spheres turn half a turn (3.14 rad), crossing the cut
+    between the ranks, and land where the drum angle puts them (1e-12 m: a formula of the angle); the 12
+    spheres of the bed fall onto them and are stirred: particles and contacts equal at every thermo step,
+    positions within 1e-6 D of the serial run after 10^4 steps (round-off, not yet amplified, as in
+    test_periodic_flow_loses_nothing)."""
+    run_dem(tmp_path, ROUGH_DRUM, 2, "log.2")
+    serial = tmp_path / "serial"
+    serial.mkdir()
+    run_dem(serial, ROUGH_DRUM, 1, "log.1")
+    a, b = frame(tmp_path / "rough.h5", 10000), frame(serial / "rough.h5", 10000)
+    assert np.array_equal(a["id"], b["id"])
+    assert np.abs(a["position"] - b["position"]).max() < 1e-6 * D
+    wall = a["id"] <= 24
+    angle = 300 * 2 * np.pi / 60 * 10000 * 2e-6
+    t = 2 * np.pi * a["id"][wall] / 24
+    # turning about +y by the angle takes (x, z) = r (cos t, sin t) to r (cos(t - angle), sin(t - angle))
+    assert np.abs(a["position"][wall, 0] - 0.009 * np.cos(t - angle)).max() < 1e-12
+    assert np.abs(a["position"][wall, 2] - 0.009 * np.sin(t - angle)).max() < 1e-12
+    assert "Processor grid: 2 x 1 x 1" in (tmp_path / "log.2").read_text()
+    rows = thermo_rows(tmp_path / "log.2")
+    assert [r[:3] for r in rows] == [r[:3] for r in thermo_rows(serial / "log.1")]
+    assert int(rows[-1][2]) > 0                               # the bed touches the turning wall
