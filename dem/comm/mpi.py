@@ -174,13 +174,19 @@ class CommMPI(Comm):
         dom.require_box("a parallel run")
         prd = dom.prd.copy()
         if x is not None and len(x):
-            x = np.clip(np.asarray(x, dtype=float).reshape(-1, 3), dom.lo, dom.hi)
-            prd = np.maximum(np.ptp(x, axis=0), 0.05 * prd)
+            x = np.asarray(x, dtype=float).reshape(-1, 3)
+            prd = self._extent(x.min(axis=0), x.max(axis=0))
         best = self._least_surface_grid(prd)
         if best is None:
             raise DemError(f"processors {' '.join(str(u) if u else '*' for u in self.user_grid)}: "
                            f"{self.nprocs} ranks cannot be arranged so")
         self._use_grid(best)
+
+    def _extent(self, lo, hi):
+        """The extent the grid is fitted to: that of the particles (lo, hi) within the box, at least 5 % of
+        the box along each axis."""
+        dom = self.sim.domain
+        return np.maximum(np.minimum(hi, dom.hi) - np.maximum(lo, dom.lo), 0.05 * dom.prd)
 
     def _least_surface_grid(self, prd, uncut=None):
         """The grid allowed by `processors` (and leaving axis `uncut` whole) with the least total sub-box
@@ -240,11 +246,10 @@ class CommMPI(Comm):
         dom, atom = self.sim.domain, self.sim.atom
         if self.procgrid[down] > 1:
             prd = dom.prd.copy()
-            n = self.sum(atom.nlocal)
-            if n:
-                lo = np.array([self.min(v) for v in atom.data["x"][:atom.nlocal].min(axis=0, initial=np.inf)])
-                hi = np.array([self.max(v) for v in atom.data["x"][:atom.nlocal].max(axis=0, initial=-np.inf)])
-                prd = np.maximum(np.minimum(hi, dom.hi) - np.maximum(lo, dom.lo), 0.05 * prd)
+            if self.sum(atom.nlocal):
+                x = atom.data["x"][:atom.nlocal]     # -lo and hi of the particles, in one reduction
+                bounds = self.max_values(np.r_[-x.min(axis=0, initial=np.inf), x.max(axis=0, initial=-np.inf)])
+                prd = self._extent(-bounds[:3], bounds[3:])
             grid = self._least_surface_grid(prd, uncut=down)
             if grid is None:
                 return

@@ -14,12 +14,9 @@ def find_drum(sim, fid, what):
 
 
 def up_direction(sim):
-    """Unit vector opposite to gravity (the first fix gravity), +z without one."""
-    for fix in sim.modify.fixes:
-        g = getattr(fix, "g", None)
-        if fix.style == "gravity" and g is not None and np.linalg.norm(g) > 0:
-            return -np.asarray(g, dtype=float) / np.linalg.norm(g)
-    return np.array([0.0, 0.0, 1.0])
+    """Unit vector opposite to gravity (the fixes' body acceleration, Modify.acceleration), +z without one."""
+    g = sim.modify.acceleration()
+    return -g / np.linalg.norm(g) if g is not None else np.array([0.0, 0.0, 1.0])
 
 
 def cross_section_basis(sim, drum):

@@ -146,13 +146,13 @@ class FixWallDrum(WallFix, Fix):
         """Rotation rate (rad/s) at the current time."""
         return self.omega_at(self.elapsed)
 
-    def wall_velocity(self, x):
-        """Velocity (n, 3) of the drum, as a rigid body, at points x (n, 3)."""
+    def wall_velocity(self, x, omega=None):
+        """Velocity (n, 3) of the drum, as a rigid body turning at omega (default: now), at points x (n, 3)."""
         e = np.zeros(3)
         e[self.axis] = 1.0
         r = np.asarray(x, dtype=float) - self.centre
         r[:, self.axis] = 0.0
-        return self.omega * np.cross(e, r)
+        return (self.omega if omega is None else omega) * np.cross(e, r)
 
     # ----- stages ---------------------------------------------------------------------------------
     def init(self):
@@ -201,9 +201,7 @@ class FixWallDrum(WallFix, Fix):
         cs, sn = math.cos(dtheta), math.sin(dtheta)
         rb, rc = cs * rb - sn * rc, sn * rb + cs * rc
         x[sel, b], x[sel, c] = self.centre[b] + rb, self.centre[c] + rc
-        v = atom.data["v"]
-        v[sel] = 0.0
-        v[sel, b], v[sel, c] = -w * rc, w * rb
+        atom.data["v"][sel] = self.wall_velocity(x[sel], w)
         om = atom.data["omega"]
         om[sel] = 0.0
         om[sel, a] = w
