@@ -80,6 +80,10 @@ class DumpVTK(Dump):
     point data (color by ``id`` or ``velocity``); plain spheres stay points. ParaView then shows
     cubes as cubes with no glyph filter (for the spheres of a mixture, glyph the VTK_VERTEX cells).
 
+    Mesh walls (``fix wall/mesh``) are written with every frame where they are then, one file each
+    (``post/pour_1000_hopper.vtu`` for the fix ``hopper``: triangles), listed in the ``.pvd`` as further
+    parts of the frame, so that ParaView shows the walls with the particles.
+
     A ``.pvd`` collection listing every frame with its time is rewritten after each frame; open it in
     ParaView to get the time series with the right times. Default name: the file name without ``*`` and
     the separator before it (``out/grains_*.vtu`` gives ``out/grains.pvd``; ``*.vtu`` gives ``ID.pvd``).
@@ -102,6 +106,7 @@ class DumpVTK(Dump):
 
     style = "vtk"
     extension, file_kind = ".vtu", "VTK XML UnstructuredGrid"
+    writes_walls = True       # mesh walls as further parts of each frame
     keywords = {"fields": None, "format": 1, "pvd": 1}
 
     def __init__(self, sim, did, group, every, path, args):
@@ -122,7 +127,7 @@ class DumpVTK(Dump):
             folder, base = os.path.split(self.pattern)
             stem = os.path.splitext(base)[0].replace("*", "").rstrip("_-. ")
             self.pvd_path = os.path.join(folder, (stem or str(did)) + ".pvd")
-        self._collection = {}     # step -> (time, file path)
+        self._collection = {}     # step -> (time, [file path, wall mesh paths ...])
 
     def keyword(self, word, values):
         if word == "format":
@@ -220,20 +225,55 @@ class DumpVTK(Dump):
                 '</VTKFile>\n']
         return "".join(out)
 
+    def wall_text(self, frame, vertices, triangles):
+        """A wall's triangle mesh as a VTK XML UnstructuredGrid (cells VTK_TRIANGLE)."""
+        arrays = _Arrays(self.binary)
+        tri = np.ascontiguousarray(triangles, dtype=np.int64)
+        return "".join([
+            '<?xml version="1.0"?>\n',
+            '<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">\n',
+            '  <UnstructuredGrid>\n',
+            '    <FieldData>\n',
+            arrays.element("TimeValue", np.array([frame.time]), "      ", ntuples=1),
+            '    </FieldData>\n',
+            f'    <Piece NumberOfPoints="{len(vertices)}" NumberOfCells="{len(tri)}">\n',
+            '      <Points>\n',
+            arrays.element("Points", np.ascontiguousarray(vertices, dtype=np.float64), "        "),
+            '      </Points>\n',
+            '      <Cells>\n',
+            arrays.element("connectivity", tri.ravel(), "        "),
+            arrays.element("offsets", 3 * np.arange(1, len(tri) + 1, dtype=np.int64), "        "),
+            arrays.element("types", np.full(len(tri), VTK_TRIANGLE, dtype=np.uint8), "        "),
+            '      </Cells>\n',
+            '    </Piece>\n',
+            '  </UnstructuredGrid>\n',
+            arrays.appended(),
+            '</VTKFile>\n'])
+
+    def wall_path(self, step, fid):
+        root, ext = os.path.splitext(self.frame_path(step))
+        return f"{root}_{fid}{ext}"
+
     def pvd_text(self):
         folder = os.path.dirname(os.path.abspath(self.pvd_path))
         lines = ['<?xml version="1.0"?>\n',
                  '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n',
                  '  <Collection>\n']
-        for step, (time, path) in sorted(self._collection.items()):
-            rel = os.path.relpath(os.path.abspath(path), folder).replace(os.sep, "/")
-            lines.append(f'    <DataSet timestep="{time!r}" group="" part="0" file={quoteattr(rel)}/>\n')
+        for step, (time, paths) in sorted(self._collection.items()):
+            for part, path in enumerate(paths):
+                rel = os.path.relpath(os.path.abspath(path), folder).replace(os.sep, "/")
+                lines.append(f'    <DataSet timestep="{time!r}" group="" part="{part}" file={quoteattr(rel)}/>\n')
         lines += ['  </Collection>\n', '</VTKFile>\n']
         return "".join(lines)
 
     def write_frame(self, frame):
-        path = self.frame_path(frame.step)
-        atomic_write(path, self.frame_text(frame))
+        paths = [self.frame_path(frame.step)]
+        atomic_write(paths[0], self.frame_text(frame))
+        for fix in self.sim.modify.fixes if self.writes_walls else ():   # mesh walls: parts 1, 2 ...
+            wall = fix.surface_mesh()
+            if wall is not None:
+                paths.append(self.wall_path(frame.step, fix.id))
+                atomic_write(paths[-1], self.wall_text(frame, *wall))
         if self.pvd_path is not None:
-            self._collection[frame.step] = (frame.time, path)
+            self._collection[frame.step] = (frame.time, paths)
             atomic_write(self.pvd_path, self.pvd_text())

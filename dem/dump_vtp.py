@@ -37,6 +37,7 @@ class DumpVTP(DumpVTK):
 
     style = "vtp"
     extension, file_kind = ".vtp", "VTK XML PolyData"
+    writes_walls = False      # OVITO reads one particle file per frame: mesh walls go to dump vtk
 
     def gathered_fields(self):
         names = Dump.gathered_fields(self)

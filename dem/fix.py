@@ -67,6 +67,11 @@ class Fix:
     def particles_removed(self):
         pass
 
+    def surface_mesh(self):
+        """(vertices (nv, 3), triangles (nt, 3)) of the wall this fix is, where it is now, for the VTK dumps;
+        None for a fix without one."""
+        return None
+
     def no_args(self):
         """For a style without arguments: any word after the style is an error, never ignored."""
         if self.args:

@@ -63,6 +63,7 @@ class FakeSim:
         self.groups = FakeGroups()
         self.units = "si"
         self.shapes = ()                       # no shape defined: every particle is a sphere
+        self.modify = types.SimpleNamespace(fixes=[])   # no fix: no mesh wall to write
         tags = rng.permutation(np.arange(10, 10 + n)).astype(np.int64)
         radius = rng.uniform(0.1, 0.5, n)
         q = rng.normal(size=(n, 4))

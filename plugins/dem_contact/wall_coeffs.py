@@ -49,9 +49,13 @@ class WallCoefficients:
         self.check_hertz()
         # Descantes' law (`law descantes` of the wall fixes) has no spring: no history
         self.use_history = needs_history(self.table[:, 1:]) and self.contact_law == "grains3d"
-        if self.use_history:     # per wall and per piece of a composite (piece c of wall w: slot c nwalls + w)
-            pieces = sim.shapes.max_components
-            sim.atom.add_field(self.history_name, (XI_WIDTH * nwalls * pieces,), np.float64, 0.0)
+        if self.use_history:
+            sim.atom.add_field(self.history_name, (self.history_width(nwalls),), np.float64, 0.0)
+
+    def history_width(self, nwalls):
+        """History values per particle: XI_WIDTH per wall and per piece of a composite (piece c of wall w
+        at slot c nwalls + w)."""
+        return XI_WIDTH * nwalls * self.sim.shapes.max_components
 
     @property
     def history_name(self):

@@ -1,0 +1,245 @@
+"""fix wall/mesh"""
+import math
+
+import numpy as np
+
+import dem_contact
+from dem import shape_command
+from dem._particles import ParticleView
+from dem.args import Args
+from dem.errors import DemError, did_you_mean
+from dem.fix import Fix, Stage
+
+from . import _wall_mesh
+from .mesh import load, rotation_about
+from ._walls import LAWS as LAW_CODES
+from .wall_fix import POINT_MODES, law_name
+from dem_contact.wall_coeffs import WallCoefficients
+
+RPM = 2.0 * math.pi / 60.0
+STAT, POSE = _wall_mesh.STAT, _wall_mesh.POSE
+MAX_CELLS = 4_000_000      # the grid of the triangles: cells of at least a particle diameter, at most this many
+
+
+class FixWallMesh(WallCoefficients, Fix):
+    """fix ID group wall/mesh file FILE [scale S] [rotate axis AX AY AZ angle DEG] [move DX DY DZ]
+        [linear VX VY VZ] [turn origin OX OY OZ axis AX AY AZ rpm W | omega W] [ramp T]
+        [point deepest|multipoint] [law grains3d|descantes]
+        [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR | model hertz E E nu NU en EN mu MU mu_roll MR]
+
+    A rigid wall made of a triangle mesh read from FILE: an STL file (ASCII or binary) or a Wavefront OBJ
+    (`.obj`; polygons are split into triangles), the path relative to the folder dem runs in. Vertices
+    closer than 1e-9 of the mesh's size are merged, so that triangles share their edges and vertices
+    (an STL file repeats them) and zero-area triangles are dropped. The mesh is one-sided in no way: a
+    particle meets a triangle from either side (give closed walls, or open surfaces the particles stay
+    on one side of).
+
+    * Placement, applied in the order given: `scale S` (about the origin), `rotate axis AX AY AZ angle
+      DEG` (about the origin, right-hand rule), `move DX DY DZ`.
+    * Motion (a rigid body, from when the fix is defined): `linear VX VY VZ` translates it at that
+      velocity; `turn origin OX OY OZ axis AX AY AZ rpm W` (or `omega W`, rad/s) turns it about the axis
+      through the origin point (which moves with `linear`), `ramp T` bringing both rates from 0 up to
+      their values over T seconds. The mesh's velocity at the contact point, V + Omega x (p - origin),
+      enters the contact law, so a moving mesh drags the particles (a mixer blade, a conveyor).
+    * Contacts: every particle of the group against every triangle it overlaps, one contact per touched
+      feature: a sphere meets the triangles at their closest points, and a contact at a shared edge or
+      vertex counts once, so a sphere rolling across two coplanar triangles, or over a convex edge, feels
+      one continuous contact with the normal of the closest feature. Shaped particles (`shape`) meet each
+      triangle with their true body (GJK, EPA depth), the contact point midway in the overlap, one
+      contact per plane (a flat face over several coplanar triangles touches once); glued composites
+      touch with each component (Model A or B as the pair style). `point multipoint`: a box or polyhedron
+      touching a triangle with a face or edge touches at each of its vertices beyond the triangle's plane,
+      each with the deepest overlap and 1/alpha of the force (Descantes 2022 eq. 3, as `fix wall/plane`).
+    * Law and coefficients as `fix wall/plane` (m_ij = m_i, the wall of infinite mass; without them
+      those of each type with itself from pair_coeff; `law descantes`, `model hertz` with R* = R_i).
+      The tangential spring is kept per particle and contact (6 at most at once), matched from step to
+      step by the contact normal (within 60 degrees): it survives a move from one triangle to the next,
+      rebuilds, restarts and migration between ranks.
+    * Cost: the triangles are binned once, in the mesh's own frame, into cells of about a particle
+      diameter; a particle meets only the triangles of the cells its bounding sphere overlaps. The mesh
+      is replicated on every rank (72 bytes a triangle plus the grid).
+
+    Thermo values: `f_ID[contacts]`, `f_ID[fx]`, `f_ID[fy]`, `f_ID[fz]` (force of the particles on the
+    mesh, N), `f_ID[tx]`, `f_ID[ty]`, `f_ID[tz]` (their torque on it about the turning origin, or the
+    world origin without `turn`, N m), `f_ID[torque]` (about the turning axis), `f_ID[angle]` (rad).
+    Global state kept for restarts: the time since the fix was defined.
+
+    Example (a hopper of inputs/meshes; inputs/in.hopper)::
+
+        fix hopper all wall/mesh file inputs/meshes/hopper.stl kn 2000 en 0.5 mu 0.5 ks 571
+    """
+
+    style = "wall/mesh"
+    behind = 0                 # a mesh has two sides: no particle is behind it
+    stages = Stage.POST_FORCE | Stage.END_OF_STEP
+    usage = ("file FILE [scale S] [rotate axis AX AY AZ angle DEG] [move DX DY DZ] [linear VX VY VZ] "
+             "[turn origin OX OY OZ axis AX AY AZ rpm W | omega W] [ramp T] [point deepest|multipoint] "
+             "[law grains3d|descantes] [kn .. en .. mu .. | model hertz E .. nu .. en .. mu ..]")
+
+    def __init__(self, sim, fid, group, args):
+        super().__init__(sim, fid, group, args)
+        a = Args(args, f"fix ID group wall/mesh {self.usage}", f"fix {fid} wall/mesh")
+        a.need(2)
+        if a[0] != "file":
+            raise a.error(f"expected 'file FILE' first, got '{a[0]}'")
+        self.path = a[1]
+        mesh = load(self.path)
+        if mesh.dropped:
+            sim.warning(f"fix {fid} wall/mesh: {mesh.dropped} degenerate triangle(s) of {self.path} dropped")
+        self.velocity = np.zeros(3)
+        self.origin = np.zeros(3)
+        self.axis = np.array([0.0, 0.0, 1.0])
+        self.omega_target = 0.0
+        self.ramp = 0.0
+        self.point = 0
+        i, law = 2, []
+        while i < len(a):
+            key = a[i]
+            if key == "scale":
+                mesh = mesh.transformed(scale=a.float(i + 1, "scale", positive=True))
+                i += 2
+            elif key == "rotate":
+                if a[i + 1] != "axis" or a[i + 5] != "angle":
+                    raise a.error("rotate: expected 'rotate axis AX AY AZ angle DEG'")
+                mesh = mesh.transformed(rotation=rotation_about(self._unit(a, i + 2, "rotate axis"),
+                                                                math.radians(a.float(i + 6, "angle"))))
+                i += 7
+            elif key == "move":
+                mesh = mesh.transformed(offset=a.floats(i + 1, 3, "move"))
+                i += 4
+            elif key == "linear":
+                self.velocity = np.array(a.floats(i + 1, 3, "linear velocity"))
+                i += 4
+            elif key == "turn":
+                if a[i + 1] != "origin" or a[i + 5] != "axis" or a[i + 9] not in ("rpm", "omega"):
+                    raise a.error("turn: expected 'turn origin OX OY OZ axis AX AY AZ rpm W' (or omega W)")
+                self.origin = np.array(a.floats(i + 2, 3, "turn origin"))
+                self.axis = self._unit(a, i + 6, "turn axis")
+                self.omega_target = a.float(i + 10, a[i + 9]) * (RPM if a[i + 9] == "rpm" else 1.0)
+                i += 11
+            elif key == "ramp":
+                self.ramp = a.float(i + 1, "ramp", nonneg=True)
+                i += 2
+            elif key == "point":
+                if a[i + 1] not in ("deepest", "multipoint"):
+                    raise a.error(f"point must be deepest or multipoint, got '{a[i + 1]}'")
+                self.point = POINT_MODES.index(a[i + 1])
+                i += 2
+            elif key == "law":
+                self.contact_law = law_name(a[i + 1], f"fix {fid} wall/mesh")
+                i += 2
+            elif key in dem_contact.KEYWORDS:
+                law += a.words[i:i + 2]
+                i += 2
+            else:
+                known = ["scale", "rotate", "move", "linear", "turn", "ramp", "point", "law"] + \
+                    list(dem_contact.KEYWORDS)
+                raise a.error(f"unknown keyword '{key}'{did_you_mean(key, known)}")
+        self.mesh = mesh
+        self.parse_law(law)
+        self.elapsed = 0.0         # time since the fix was defined (s)
+        self.token = 0             # the kernel's triangle stamps (MeshIndex)
+        self.index = None
+        self.stats = np.zeros(STAT["NSTAT"])
+        self.ncontacts = 0
+        self.max_overlap = 0.0
+        self.energy = 0.0          # elastic energy stored in the mesh contacts (thermo pe, etotal)
+
+    @staticmethod
+    def _unit(a, i, name):
+        v = np.array(a.floats(i, 3, name))
+        norm = float(np.linalg.norm(v))
+        if norm == 0.0:
+            raise a.error(f"{name} must not be zero")
+        return v / norm
+
+    # ----- motion ---------------------------------------------------------------------------------
+    def _rate(self, t):
+        """Fraction of the full rates at time t (the ramp) and the time integral of it from 0 to t."""
+        if self.ramp > 0.0 and t < self.ramp:
+            return t / self.ramp, 0.5 * t * t / self.ramp
+        return 1.0, t - 0.5 * self.ramp
+
+    def pose(self, t=None):
+        """The kernel's pose vector at time t since the definition (default: now): POSE."""
+        t = self.elapsed if t is None else t
+        f, integral = self._rate(t)
+        p = np.zeros(POSE["N"])
+        p[POSE["M"]:POSE["M"] + 9] = rotation_about(self.axis, self.omega_target * integral).ravel()
+        p[POSE["C"]:POSE["C"] + 3] = self.origin
+        p[POSE["D"]:POSE["D"] + 3] = self.velocity * integral
+        p[POSE["V"]:POSE["V"] + 3] = self.velocity * f
+        p[POSE["W"]:POSE["W"] + 3] = self.axis * self.omega_target * f
+        return p
+
+    def surface_mesh(self):
+        """The mesh's vertices (nv, 3) where it is now and its triangles (for the VTK dumps)."""
+        p = self.pose()
+        M = p[POSE["M"]:POSE["M"] + 9].reshape(3, 3)
+        return (self.mesh.vertices - self.origin) @ M.T + self.origin + p[POSE["D"]:POSE["D"] + 3], \
+            self.mesh.triangles
+
+    # ----- stages ---------------------------------------------------------------------------------
+    def history_width(self, nwalls):
+        return _wall_mesh.HISTORY_WIDTH
+
+    def init(self):
+        sim = self.sim
+        self.init_table(1)
+        self.shape_view = shape_command.shape_view(sim)
+        n = sim.atom.nlocal
+        rmax = float(sim.atom.data["radius"][:n].max()) if n else 0.0
+        rmax = sim.comm.max(max([rmax] + [fix.max_radius() for fix in sim.modify.fixes]))
+        lo, hi = self.mesh.bounds()
+        extent = np.maximum(hi - lo, 1e-12 * max(float(np.max(hi - lo)), 1.0))
+        cell = max(2.0 * rmax, float(np.max(extent)) / 100.0)
+        while np.prod(np.floor(extent / cell) + 1) > MAX_CELLS:
+            cell *= 1.5
+        if self.index is None or self.index.h != cell:
+            self.index = _wall_mesh.MeshIndex(self.mesh, cell)
+
+    def compute(self, advance):
+        sim = self.sim
+        _wall_mesh.mesh_walls(ParticleView(sim.atom), int(self.groupbit), self.index, self.pose(), self.table[0],
+                              self.shape_view, self.history(), self.use_history, sim.update.dt, advance,
+                              self.point == POINT_MODES.index("multipoint"),
+                              bool(getattr(sim.pair, "multipoint_average", True)), LAW_CODES[self.contact_law],
+                              self.token, self.stats)
+        self.token += max(sim.atom.nlocal, 1)
+        self.ncontacts = int(self.stats[STAT["CONTACTS"]])
+        self.max_overlap = float(self.stats[STAT["MAXOV"]])
+        self.energy = float(self.stats[STAT["ENERGY"]])
+
+    def post_force(self):
+        self.compute(True)
+
+    def end_of_step(self):
+        self.elapsed += self.sim.update.dt
+
+    def worst_contact(self):
+        """(overlap / diameter, text naming the particle and the triangle) of this rank's largest overlap at
+        the last compute, or None (the overlap stop of `Update.check_step`)."""
+        i = int(self.stats[STAT["WORST_I"]])
+        if i < 0:
+            return None
+        tag = int(self.sim.atom.data["tag"][i])
+        return self.max_overlap, (f"particle {tag} and triangle {int(self.stats[STAT['WORST_T']])} of "
+                                  f"{self.path} (fix {self.id} wall/mesh)")
+
+    def thermo(self):
+        comm = self.sim.comm
+        force = [comm.sum(float(v)) for v in self.stats[STAT["FORCE"]:STAT["FORCE"] + 3]]
+        torque = [comm.sum(float(v)) for v in self.stats[STAT["TORQUE"]:STAT["TORQUE"] + 3]]
+        _, integral = self._rate(self.elapsed)
+        out = {"contacts": comm.sum(self.ncontacts), "angle": self.omega_target * integral,
+               "torque": float(np.dot(torque, self.axis))}
+        out.update(zip(("fx", "fy", "fz"), force))
+        out.update(zip(("tx", "ty", "tz"), torque))
+        return out
+
+    def state(self):
+        return {"elapsed": self.elapsed}
+
+    def restore(self, state):
+        self.elapsed = float(state.get("elapsed", 0.0))
+

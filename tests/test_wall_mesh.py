@@ -1,0 +1,245 @@
+"""fix wall/mesh: a triangle mesh wall against the equivalent planes and closed-form answers. A sphere
+meets the triangles at their closest points, one contact per touched feature: rolling over a finely cut
+floor it follows the plane's trajectory to round-off (crossing the shared edges without a jump), over a
+convex edge or a vertex it is pushed along the line from that feature; a cube lies on a mesh floor on 4
+points; a moving floor drags a sphere to the rolling speed 2U/7; restarts continue bit for bit."""
+import math
+
+import numpy as np
+import pytest
+
+import dem
+from dem.errors import DemError
+from dem_walls.mesh import weld
+
+LAW = "kn 1e5 en 0.5 mu 0.3 gamma_t 2000 ks 28571"
+R_SPHERE = 0.005
+
+
+def floor(path, n, half=0.1, z=0.0):
+    """The square [-half, half]^2 at height z cut into n x n squares of 2 triangles each (the diagonals
+    alternate, so the sphere crosses edges of three directions)."""
+    xs = np.linspace(-half, half, n + 1)
+    tris = []
+    for i in range(n):
+        for j in range(n):
+            a, b = (xs[i], xs[j], z), (xs[i + 1], xs[j], z)
+            c, d = (xs[i + 1], xs[j + 1], z), (xs[i], xs[j + 1], z)
+            tris += [(a, b, c), (a, c, d)] if (i + j) % 2 else [(a, b, d), (b, c, d)]
+    weld(np.array(tris, dtype=float)).write_stl(str(path), binary=False)
+    return str(path)
+
+
+def sphere_sim(wall, x0="-0.05 0.0123 0.005", v="0.3 0.05 0", gravity="0.3 0 -1", box="-0.1 0.1 -0.1 0.1 -0.05 0.1"):
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+        boundary f f f
+        region box block {box}
+        create_box 1 box
+        create_atoms 1 single {x0} radius {R_SPHERE} density 2500 v {v}
+        pair_style sphere
+        pair_coeff * * {LAW}
+        fix integ all nve/sphere
+        fix g all gravity 9.81 vector {gravity}
+        {wall}
+        timestep 1e-5
+        thermo 0
+    """)
+    return sim
+
+
+def track(sim, chunks=20, every=500):
+    out = []
+    for _ in range(chunks):
+        sim.run(every)
+        out.append(np.r_[sim.atom.local("x")[0], sim.atom.local("v")[0], sim.atom.local("omega")[0]])
+    return np.array(out)
+
+
+def test_sphere_rolls_over_a_cut_floor_as_on_a_plane(tmp_path):
+    """A sphere thrown along a floor cut into 98 triangles, under gravity tilted by 0.3: it bounces, slides,
+    rolls and crosses ~10 shared edges of three directions. Same trajectory as on `wall/plane` to 1e-12 m
+    (measured 9e-14: round-off of a normal that is computed from the closest point instead of given): a
+    second contact at an edge, or a normal tilted at it, would change the path by the overlap's order
+    (1e-6 m) or more."""
+    mesh = floor(tmp_path / "floor.stl", 7)
+    plane = track(sphere_sim(f"fix w all wall/plane zplane 0 NULL {LAW}"))
+    sim = sphere_sim(f"fix w all wall/mesh file {mesh} {LAW}")
+    cut = track(sim)
+    assert np.abs(plane[:, :3] - cut[:, :3]).max() < 1e-12
+    assert np.abs(plane[:, 3:] - cut[:, 3:]).max() < 1e-9 * np.abs(plane[:, 3:]).max()
+    assert abs(plane[-1, 0] - plane[0, 0]) > 0.03                  # it did cross several triangles
+    assert sim.thermo_keyword("f_w[contacts]") == 1
+
+
+def test_inclined_mesh_is_the_tilted_plane(tmp_path):
+    """A floor turned by 20 deg about y (`rotate axis 0 1 0 angle 20`) under vertical gravity is the flat
+    floor under gravity turned back by 20 deg (R^T g): the sphere's path turned back agrees to 1e-12 m (round-off of
+    the turned coordinates)."""
+    mesh = floor(tmp_path / "floor.stl", 10)
+    th = math.radians(20.0)
+    flat = track(sphere_sim(f"fix w all wall/mesh file {mesh} {LAW}", x0="0 0.01 0.005", v="0 0 0",
+                            gravity=f"{math.sin(th)!r} 0 {-math.cos(th)!r}"), chunks=30)
+    tilted = track(sphere_sim(f"fix w all wall/mesh file {mesh} rotate axis 0 1 0 angle 20 {LAW}",
+                              x0=f"{0.005 * math.sin(th)!r} 0.01 {0.005 * math.cos(th)!r}", v="0 0 0",
+                              gravity="0 0 -1"), chunks=30)
+    rot = np.array([[math.cos(th), 0, math.sin(th)], [0, 1, 0], [-math.sin(th), 0, math.cos(th)]])
+    assert np.abs(flat[:, :3] @ rot.T - tilted[:, :3]).max() < 1e-12
+    assert abs(flat[-1, 0] - flat[0, 0]) > 0.02                    # it rolled over an edge or two
+
+
+def test_convex_edge_and_vertex_push_along_the_line_from_the_feature(tmp_path):
+    """A roof (two triangles meeting at a ridge along y, 30 deg each side) and a pyramid apex: a sphere
+    whose centre lies beyond both faces touches only the ridge (or the apex); the force on it is along the
+    line from its closest point on that feature to its centre, of the magnitude kn delta of one contact,
+    to round-off."""
+    h = 0.02
+    roof = np.array([[(-0.05, -0.05, -0.05 * math.tan(math.pi / 6)), (0, -0.05, 0), (0, 0.05, 0)],
+                     [(-0.05, -0.05, -0.05 * math.tan(math.pi / 6)), (0, 0.05, 0), (-0.05, 0.05, -0.05 * math.tan(math.pi / 6))],
+                     [(0, -0.05, 0), (0.05, -0.05, -0.05 * math.tan(math.pi / 6)), (0.05, 0.05, -0.05 * math.tan(math.pi / 6))],
+                     [(0, -0.05, 0), (0.05, 0.05, -0.05 * math.tan(math.pi / 6)), (0, 0.05, 0)]])
+    apex = (0.0, 0.0, 0.0)
+    base = [(-h, -h, -h), (h, -h, -h), (h, h, -h), (-h, h, -h)]
+    pyramid = np.array([(base[k], base[(k + 1) % 4], apex) for k in range(4)])
+    dist = R_SPHERE - 2e-6                        # 2 um of overlap, along a direction inside the feature's region
+    ridge_dir = np.array([math.sin(math.radians(10)), 0.0, math.cos(math.radians(10))])   # within 30 deg
+    apex_dir = np.array([0.1, -0.07, 1.0]) / math.sqrt(1.0149)                             # within 45 deg
+    for tris, feature, direction in ((roof, np.array([0.0, 0.003, 0.0]), ridge_dir), (pyramid, np.zeros(3), apex_dir)):
+        centre = feature + dist * direction
+        path = tmp_path / "m.stl"
+        weld(tris.astype(float)).write_stl(str(path), binary=False)
+        sim = sphere_sim(f"fix w all wall/mesh file {path} kn 1e5 en 0.5",
+                         x0=" ".join(repr(float(c)) for c in centre), v="0 0 0", gravity="0 0 -1")
+        sim.run(0)
+        sim.modify.find("w").compute(False)       # the forces where the sphere was put
+        f = -np.array([sim.thermo_keyword(f"f_w[f{c}]") for c in "xyz"])     # on the sphere
+        assert sim.thermo_keyword("f_w[contacts]") == 1
+        assert np.abs(f - 1e5 * (R_SPHERE - dist) * direction).max() < 1e-12 * 1e5 * (R_SPHERE - dist)
+
+
+def test_sphere_in_a_valley_touches_both_faces(tmp_path):
+    """The roof upside down (a V): a sphere resting in it touches both faces, 2 contacts, forces
+    symmetric about the valley's plane to round-off."""
+    s = math.tan(math.pi / 6)
+    vee = np.array([[(-0.05, -0.05, 0.05 * s), (0, 0.05, 0), (0, -0.05, 0)],
+                    [(-0.05, -0.05, 0.05 * s), (-0.05, 0.05, 0.05 * s), (0, 0.05, 0)],
+                    [(0, -0.05, 0), (0.05, 0.05, 0.05 * s), (0.05, -0.05, 0.05 * s)],
+                    [(0, -0.05, 0), (0, 0.05, 0), (0.05, 0.05, 0.05 * s)]])
+    path = tmp_path / "v.stl"
+    weld(vee).write_stl(str(path), binary=False)
+    z = R_SPHERE / math.cos(math.pi / 6) - 1e-6
+    sim = sphere_sim(f"fix w all wall/mesh file {path} kn 1e5 en 0.5", x0=f"0 0 {z!r}", v="0 0 0",
+                     gravity="0 0 -1")
+    sim.run(0)
+    sim.modify.find("w").compute(False)
+    assert sim.thermo_keyword("f_w[contacts]") == 2
+    assert abs(sim.thermo_keyword("f_w[fx]")) < 1e-12 * abs(sim.thermo_keyword("f_w[fz]"))
+
+
+CUBE = """units si
+boundary f f f
+region box block -0.01 0.01 -0.01 0.01 -0.001 0.02
+create_box 1 box
+shape c cube 0.002
+create_atoms 1 single 0.0003 0.0002 {z} shape c density 1250 quat {quat}
+pair_style convex/gjk
+pair_coeff * * kn 1e5 en 0.5
+fix integrate all nve/shape
+fix gravity all gravity 9.81 vector 0 0 -1
+{wall}
+timestep 2e-6
+"""
+
+
+def test_cube_rests_on_a_mesh_floor_on_four_points(tmp_path):
+    """A cube dropped 10 um face down on a floor of 18 triangles whose edges pass under it, `point
+    multipoint`: it rests on its 4 corners, unturned (omega exactly 0), at the height of wall/plane's
+    multipoint floor to 1e-12 m. Turned (quaternion 0.9 0.3 0.2 0.1) and dropped 1.5 mm, it lands and
+    tips on a corner, then an edge, as on the plane: position to 1e-12 m, spin to 1e-6 relative (the
+    contact point of a single-vertex hit comes from EPA here, from the vertex there)."""
+    mesh = floor(tmp_path / "f.stl", 3, half=0.01)
+    for quat, z, steps, tol_w in (("1 0 0 0", 0.00101, 30000, 0.0), ("0.9 0.3 0.2 0.1", 0.0025, 20000, 1e-6)):
+        res = []
+        for wall in (f"fix floor all wall/plane zplane 0 NULL kn 1e5 en 0.5 point multipoint",
+                     f"fix floor all wall/mesh file {mesh} kn 1e5 en 0.5 point multipoint"):
+            sim = dem.Simulation(screen=False)
+            sim.commands(CUBE.format(z=z, quat=quat, wall=wall))
+            sim.run(steps)
+            res.append((sim.atom.local("x")[0].copy(), sim.atom.local("omega")[0].copy(),
+                        sim.modify.find("floor").ncontacts))
+        (xp, wp, np_), (xm, wm, nm) = res
+        assert np.abs(xp - xm).max() < 1e-12
+        assert np.abs(wp - wm).max() <= tol_w * max(np.abs(wp).max(), 1e-30)
+        assert nm == np_
+        if quat == "1 0 0 0":
+            assert nm == 4 and np.array_equal(wm, np.zeros(3))
+
+
+def test_moving_floor_drags_a_sphere_to_two_sevenths_of_its_speed(tmp_path):
+    """A sphere set at rest on a floor moving at U along x (`linear U 0 0`): friction mu m g accelerates it
+    and spins it up until its contact point moves with the floor: v = mu g t, omega r = (5/2) mu g t,
+    no slip when v + omega r = U, then v = 2U/7 for good (I = 2/5 m r^2). Measured within 2e-4 U after
+    0.1 s (the tangential spring's small oscillation at the stick transition); a floor that did not pass
+    its velocity to the law would leave the sphere at rest."""
+    U = 0.2
+    mesh = floor(tmp_path / "f.stl", 2, half=0.5)
+    sim = sphere_sim(f"fix w all wall/mesh file {mesh} linear {U} 0 0 {LAW}", x0=f"0 0 {R_SPHERE - 1e-6!r}",
+                     v="0 0 0", gravity="0 0 -1", box="-0.5 0.5 -0.5 0.5 -0.05 0.1")
+    sim.run(10000)
+    v = sim.atom.local("v")[0]
+    assert v[0] == pytest.approx(2.0 * U / 7.0, abs=2e-4 * U)
+    assert abs(v[1]) < 1e-9
+    assert sim.thermo_keyword("f_w[fx]") == pytest.approx(0.0, abs=1e-6)   # rolling: no force left
+
+
+def test_turning_mesh_torque_and_drag(tmp_path):
+    """A sphere resting on a turntable (the floor turning at 30 rpm about z through the origin), 2 cm from
+    the axis: friction carries it round; the torque of the sphere on the table about the axis opposes the
+    turning while it is being dragged (negative)."""
+    mesh = floor(tmp_path / "f.stl", 2, half=0.1)
+    sim = sphere_sim(f"fix w all wall/mesh file {mesh} turn origin 0 0 0 axis 0 0 1 rpm 30 {LAW}",
+                     x0=f"0.02 0 {R_SPHERE - 1e-6!r}", v="0 0 0", gravity="0 0 -1")
+    sim.run(200)
+    assert sim.thermo_keyword("f_w[torque]") < 0.0
+    sim.run(20000)
+    x, v = sim.atom.local("x")[0], sim.atom.local("v")[0]
+    assert np.dot(np.cross([0, 0, 1.0], x), v) > 0.0            # carried in the table's sense
+    assert sim.thermo_keyword("f_w[angle]") == pytest.approx(math.pi * sim.update.time, rel=1e-12)
+
+
+def test_restart_continues_bitwise(tmp_path):
+    """Run 6000 steps straight, or 3000 + write_restart + read_restart + 3000: the same bits (the
+    tangential springs live in the per-particle history, the mesh's motion in the fix's state)."""
+    mesh = floor(tmp_path / "f.stl", 7)
+    wall = f"fix w all wall/mesh file {mesh} linear 0.01 0 0 {LAW}"
+    straight = sphere_sim(wall)
+    straight.run(6000)
+    first = sphere_sim(wall)
+    first.run(3000)
+    first.commands(f"write_restart {tmp_path / 'r.h5'}")
+    second = dem.Simulation(screen=False)
+    second.commands(f"""
+        read_restart {tmp_path / 'r.h5'}
+        pair_style sphere
+        pair_coeff * * {LAW}
+        fix integ all nve/sphere
+        fix g all gravity 9.81 vector 0.3 0 -1
+        {wall}
+        timestep 1e-5
+        thermo 0
+        run 3000
+    """)
+    for name in ("x", "v", "omega"):
+        assert np.array_equal(straight.atom.local(name), second.atom.local(name))
+
+
+def test_errors_name_the_problem(tmp_path):
+    mesh = floor(tmp_path / "f.stl", 1)
+    with pytest.raises(DemError, match="missing.stl"):
+        sphere_sim(f"fix w all wall/mesh file {tmp_path / 'missing.stl'} {LAW}")
+    with pytest.raises(DemError, match="unknown keyword 'sclae'.*scale"):
+        sphere_sim(f"fix w all wall/mesh file {mesh} sclae 2 {LAW}")
+    with pytest.raises(DemError, match="rotate axis AX AY AZ angle DEG"):
+        sphere_sim(f"fix w all wall/mesh file {mesh} rotate 0 0 1 30 {LAW}")
+    with pytest.raises(DemError, match="expected 'file FILE'"):
+        sphere_sim(f"fix w all wall/mesh {mesh} {LAW}")
