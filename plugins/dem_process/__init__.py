@@ -1,8 +1,9 @@
 """Plugin: processes and their analysis, for packings and rotating drums (Part III sec 4.1, 4.2).
 
-Fixes: `insert` (random insertion without overlap), `damping/potyondy`
-(local non-viscous damping), `print/series` (time series of thermo keywords to a file), `ave/profile`
-(time-averaged profiles along an axis), `ave/vector` (time-averaged compute vectors to a file).
+Fixes: `insert` (random insertion without overlap), `remove` (deletion inside a region: an outlet),
+`damping/potyondy` (local non-viscous damping), `print/series` (time series of thermo keywords to a
+file), `ave/profile` (time-averaged profiles along an axis), `ave/vector` (time-averaged compute vectors
+to a file).
 Computes: `ke`, `erotate`, `coord`, `vmean`, `porosity`, `repose`, `corotate`; analysis of packings and
 flows (docs/analysis.md): `contact/types`, `stress`, `rdf`, `nematic`.
 Dump: `png` (drum cross-section pictures)."""
@@ -21,8 +22,9 @@ from .fix_ave_vector import FixAveVector
 from .fix_damping_potyondy import FixDampingPotyondy
 from .fix_insert import FixInsert
 from .fix_print_series import FixPrintSeries
+from .fix_remove import FixRemove
 
-STYLES = [FixInsert, FixDampingPotyondy, FixPrintSeries, ComputeKE, ComputeERotate,
+STYLES = [FixInsert, FixRemove, FixDampingPotyondy, FixPrintSeries, ComputeKE, ComputeERotate,
           ComputeCoord, ComputeVMean, ComputePorosity, ComputeRepose, ComputeCorotate, DumpPNG,
           ComputeContactTypes, ComputeStress, ComputeRDF, ComputeNematic, FixAveProfile, FixAveVector]
 

@@ -40,7 +40,7 @@ def random_points(region, domain, rng, n, margin):
 
 
 class FixInsert(Fix):
-    """fix ID group insert SEED REGION-ID count N | volfrac PHI [every M] [per K] [start STEP]
+    """fix ID group insert SEED REGION-ID count N | volfrac PHI [every M] [per K | massrate Q] [start STEP]
         [radius R | radius uniform|gaussian|lognormal A B | radius discrete R1 F1 ...] [density RHO]
         [shape NAME [scale ...] | mix NAME1 W1 NAME2 W2 ... [fractions mass|number]] [type T]
         [v VX VY VZ] [omega WX WY WZ] [orient random|fixed]
@@ -54,6 +54,17 @@ class FixInsert(Fix):
     random pose. Insertion steps come every M steps (default 1) from the first step of the next run (or
     from step START); the fix forces a neighbor-list rebuild on those steps and inserts at PRE_EXCHANGE.
 
+    * `massrate Q`: a continuous feed of Q kg/s instead of all pending particles at each insertion step
+      (not with `per`). At an insertion step at time t, the pending particles are taken in the order
+      they were drawn while the mass inserted before each (earlier steps and the ones taken before it
+      at this step) is at most Q (t - t0), t0 the time of the first insertion step: the inserted mass
+      stays at or below Q (t - t0) plus one particle's mass (so the first particle goes in at t0, and
+      a slow rate starts at once). For particles of equal mass m, floor(Q (t - t0) / m) + 1 have been
+      taken by time t (until the count is reached). A particle refused for overlap stays first in line
+      and is retried at the next insertion step; the target is cumulative, so a feed held back by a
+      full region catches up once there is room. Insertion steps at which the feed has nothing to take
+      are skipped without a neighbor-list rebuild (a slow feed with `every 1` rebuilds only when a
+      particle is due).
     * `count N`: insert N particles; `volfrac PHI`: insert particles until their volume reaches PHI times
       the region volume (the sizes are drawn up front, so the number is known at once).
     * Sizes: `radius` (default 0.5, see `create_atoms`): one size, `uniform RMIN RMAX`, `gaussian MEAN SD`
@@ -77,7 +88,8 @@ class FixInsert(Fix):
     The random stream depends only on SEED (every rank draws the same candidates; each rank tests its own
     particles and the verdicts are combined), so the packing is the same whatever the number of ranks.
     The ghost cutoff covers the largest particle to come from the start of the run. A line is logged when
-    every particle has been inserted. Thermo: `f_ID[inserted]`, `f_ID[pending]`.
+    every particle has been inserted. Thermo: `f_ID[inserted]`, `f_ID[pending]`, `f_ID[mass]` (the
+    inserted mass).
 
     Example (Part III sec 4.1: a shower from a thin layer at the top of the box)::
 
@@ -87,11 +99,12 @@ class FixInsert(Fix):
 
     style = "insert"
     stages = Stage.PRE_EXCHANGE | Stage.END_OF_STEP
-    usage = ("SEED REGION-ID count N | volfrac PHI [every M] [per K] [start STEP] [radius ...] "
+    usage = ("SEED REGION-ID count N | volfrac PHI [every M] [per K | massrate Q] [start STEP] [radius ...] "
              "[shape NAME [scale ...] | mix NAME1 W1 ... [fractions mass|number]] [density RHO] [type T] "
              "[v VX VY VZ] [omega WX WY WZ] [orient random|fixed]")
     COUNTS = {"count": 1, "volfrac": 1, "every": 1, "per": 1, "start": 1, "radius": 1, "density": 1,
-              "type": 1, "v": 3, "omega": 3, "orient": 1, "shape": 1, "scale": 1, "mix": 2, "fractions": 1}
+              "type": 1, "v": 3, "omega": 3, "orient": 1, "shape": 1, "scale": 1, "mix": 2, "fractions": 1,
+              "massrate": 1}
 
     def __init__(self, sim, fid, group, args):
         super().__init__(sim, fid, group, args)
@@ -114,6 +127,12 @@ class FixInsert(Fix):
         self.start = int(num("start")) if "start" in kw else None
         if self.every < 1 or (self.per is not None and self.per < 1):
             raise DemError(f"{what}: every and per must be >= 1")
+        self.massrate = num("massrate") if "massrate" in kw else None
+        if self.massrate is not None:
+            if "per" in kw:
+                raise DemError(f"{what}: give either 'per K' or 'massrate Q', not both")
+            if self.massrate <= 0:
+                raise DemError(f"{what}: massrate must be > 0 (kg/s), got {kw['massrate'][0]}")
         density = num("density") if "density" in kw else 1.0
         if density <= 0:
             raise DemError(f"{what}: density must be > 0")
@@ -145,6 +164,9 @@ class FixInsert(Fix):
         self.inserted = 0
         self.attempts = 0
         self.done_logged = False
+        self.t0 = None               # time of the first insertion step (massrate)
+        self._masses = None
+        self._mass_in = None         # cached inserted_mass()
 
     # ----- parsing --------------------------------------------------------------------------------
     def _keywords(self, words, what):
@@ -269,7 +291,12 @@ class FixInsert(Fix):
             self.sim.neighbor.force_rebuild = True
 
     def end_of_step(self):
-        if len(self.pending) and self.next_step == self.sim.update.ntimestep + 1:
+        up = self.sim.update
+        if len(self.pending) and self.next_step == up.ntimestep + 1:
+            if self.massrate is not None and self.t0 is not None and \
+                    self.massrate * (up.time + up.dt - self.t0) < self.inserted_mass():
+                self.next_step += self.every    # the feed is ahead: nothing to take then, no rebuild
+                return
             self.sim.neighbor.force_rebuild = True
 
     def pre_exchange(self):
@@ -280,9 +307,39 @@ class FixInsert(Fix):
         self.next_step = step + self.every
         self.insert(step)
 
+    def masses(self):
+        """Masses of all the drawn particles (pending or not), in draw order."""
+        if self._masses is None:
+            self._masses = self._properties(np.arange(len(self.radii)))["rmass"]
+        return self._masses
+
+    def inserted_mass(self):
+        """Mass of the particles inserted so far, all ranks (the drawn particles no longer pending)."""
+        if self._mass_in is None:
+            done = np.ones(len(self.radii), dtype=bool)
+            done[self.pending] = False
+            self._mass_in = float(self.masses()[done].sum())
+        return self._mass_in
+
+    def _take(self):
+        """The pending particles to try at this insertion step, a prefix of the pending list."""
+        if self.per is not None:
+            return self.pending[:self.per]
+        if self.massrate is None:
+            return self.pending
+        time = self.sim.update.time
+        if self.t0 is None:
+            self.t0 = time
+        m = self.masses()[self.pending]
+        before = self.inserted_mass() + (np.cumsum(m) - m)     # mass inserted before each pending particle
+        k = int(np.searchsorted(before, self.massrate * (time - self.t0), side="right"))
+        return self.pending[:k]
+
     def insert(self, step):
         sim, atom, dom = self.sim, self.sim.atom, self.sim.domain
-        take = self.pending[:self.per] if self.per is not None else self.pending
+        take = self._take()
+        if not len(take):
+            return
         k = len(take)
         radius = self.radii[take]
         # every rank draws the same candidates from the same stream
@@ -314,16 +371,15 @@ class FixInsert(Fix):
             atom.natoms += nnew
             self.inserted += nnew
             self.pending = np.concatenate([take[~ok], self.pending[k:]])
+            self._mass_in = None
         if not len(self.pending) and not self.done_logged:
             self.done_logged = True
             sim.print(f"fix {self.id} insert: all {self.inserted} particles inserted at step {step} "
                       f"(t = {sim.update.time:.6g} s, {self.attempts} attempts)")
 
-    def _add(self, idx, x, quat, tags):
-        atom = self.sim.atom
+    def _properties(self, idx):
+        """rmass, inertia and shape of the drawn particles idx."""
         n = len(idx)
-        if not n:
-            return
         kinds = self.kinds[idx]
         radius = self.radii[idx]
         props = {"rmass": np.zeros(n), "inertia": np.zeros((n, 3)), "shape": np.zeros(n, dtype=np.int32)}
@@ -332,20 +388,31 @@ class FixInsert(Fix):
             if sel.any():
                 for name, values in tpl.properties(radius[sel]).items():
                     props[name][sel] = values
+        return props
+
+    def _add(self, idx, x, quat, tags):
+        atom = self.sim.atom
+        n = len(idx)
+        if not n:
+            return
+        radius = self.radii[idx]
+        props = self._properties(idx)
         s = atom.add(x, radius, props["rmass"], self.type, v=np.tile(self.v, (n, 1)),
                      omega=np.tile(self.omega0, (n, 1)), tags=tags, quat=quat, inertia=props["inertia"],
                      shape=props["shape"])
         atom.data["mask"][s] |= self.groupbit
 
     def thermo(self):
-        return {"inserted": self.inserted, "pending": len(self.pending)}
+        return {"inserted": self.inserted, "pending": len(self.pending), "mass": self.inserted_mass()}
 
     def state(self):
         return {"rng": self.rng.bit_generator.state, "radii": self.radii, "kinds": self.kinds,
                 "pending": self.pending, "next_step": self.next_step, "inserted": self.inserted,
-                "attempts": self.attempts, "done_logged": self.done_logged}
+                "attempts": self.attempts, "done_logged": self.done_logged, "t0": self.t0}
 
     def restore(self, state):
         self.rng.bit_generator.state = state["rng"]
         for key in ("radii", "kinds", "pending", "next_step", "inserted", "attempts", "done_logged"):
             setattr(self, key, state[key])
+        self.t0 = state.get("t0")          # absent from restarts written before massrate existed
+        self._masses = self._mass_in = None
