@@ -415,3 +415,27 @@ def test_rough_drum_wall_carried_across_ranks(tmp_path):
     rows = thermo_rows(tmp_path / "log.2")
     assert [r[:3] for r in rows] == [r[:3] for r in thermo_rows(serial / "log.1")]
     assert int(rows[-1][2]) > 0                               # the bed touches the turning wall
+
+
+def test_mesh_walls_two_ranks_match_serial(tmp_path, serial_bed):
+    """The dense bed of test_dense_bed_two_ranks_matches_serial in a box of triangles (fix wall/mesh, 160
+    triangles, the mesh on every rank) instead of planes: particles, pair and wall contacts equal at every
+    step on 1 and 2 ranks, the state equal to round-off after 200 steps; and the same as the planes' serial
+    run (the spheres meet the same faces: test_wall_mesh)."""
+    from test_wall_mesh import open_box
+    open_box(tmp_path / "box.stl", (0, 0, 0), (0.012, 0.008, 0.03))
+    script = bed("bed.h5").replace("fix             walls all wall/plane xplane 0 0.012 yplane 0 0.008 zplane 0 NULL",
+                                   "fix             walls all wall/mesh file box.stl")
+    assert "wall/mesh" in script
+    run_dem(tmp_path, script, 2, "log.2")
+    serial = tmp_path / "serial"
+    serial.mkdir()
+    (serial / "box.stl").write_bytes((tmp_path / "box.stl").read_bytes())
+    run_dem(serial, script, 1, "log.1")
+    rows1, rows2 = thermo_rows(serial / "log.1"), thermo_rows(tmp_path / "log.2")
+    assert len(rows1) == len(rows2) == 201
+    assert [r[:4] for r in rows1] == [r[:4] for r in rows2]
+    assert int(rows1[-1][3]) > 10                             # spheres on the mesh
+    assert_same_state(frame(serial / "bed.h5", 200), frame(tmp_path / "bed.h5", 200))
+    assert_same_state(serial_bed[1], frame(tmp_path / "bed.h5", 200))
+    assert "on 2 procs" in (tmp_path / "log.2").read_text()

@@ -243,3 +243,102 @@ def test_errors_name_the_problem(tmp_path):
         sphere_sim(f"fix w all wall/mesh file {mesh} rotate 0 0 1 30 {LAW}")
     with pytest.raises(DemError, match="expected 'file FILE'"):
         sphere_sim(f"fix w all wall/mesh {mesh} {LAW}")
+
+
+def open_box(path, lo, hi, n=4):
+    """The floor and four sides of the box [lo, hi] as a mesh, each face cut into n x n squares of 2
+    triangles (normals inward), written as binary STL."""
+    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
+    tris = []
+    for axis, side in ((2, 0), (0, 0), (0, 1), (1, 0), (1, 1)):
+        u, v = [d for d in range(3) if d != axis]
+        s = np.linspace(0.0, 1.0, n + 1)
+        for i in range(n):
+            for j in range(n):
+                quad = []
+                for a, b in ((s[i], s[j]), (s[i + 1], s[j]), (s[i + 1], s[j + 1]), (s[i], s[j + 1])):
+                    p = np.empty(3)
+                    p[axis] = hi[axis] if side else lo[axis]
+                    p[u] = lo[u] + a * (hi[u] - lo[u])
+                    p[v] = lo[v] + b * (hi[v] - lo[v])
+                    quad.append(p)
+                tris += [(quad[0], quad[1], quad[2]), (quad[0], quad[2], quad[3])]
+    # ASCII: exact coordinates (binary STL rounds them to float32); the mesh is two-sided: any orientation
+    weld(np.array(tris)).write_stl(str(path), binary=False)
+    return str(path)
+
+
+BED = """
+units           si
+boundary        f f fm
+region          box block 0 0.012 0 0.008 0 0.02
+create_box      1 box
+region          fill block 0 0.012 0 0.008 0 0.012
+create_atoms    1 lattice fill bcc 0.00116 radius uniform 0.00045 0.0005 density 2500
+pair_style      sphere
+pair_coeff      * * kn 2000 en 0.5 mu 0.5 gamma_t 0 ks 571.4
+fix             integrate all nve/sphere
+fix             gravity all gravity 9.81 vector 0.3 0.2 -1
+{walls}
+timestep        2e-6
+neighbor        0.0001 bin
+thermo          0
+"""
+
+
+def test_open_box_of_triangles_holds_a_bed_as_its_planes(tmp_path):
+    """A dense bed of 1300 spheres (bcc lattice, radii 0.45-0.5 mm) falling and sliding under tilted gravity
+    in a box whose floor and four sides are planes, or a mesh of 160 triangles (edges under the bed, where
+    floor and sides meet): after 2000 steps the same particles touch the walls and every position agrees
+    within 1e-6 of a diameter (1e-9 m): measured 9e-12 m, the round-off of the normals
+    (1e-16 m) grown by the bed's collisions; one contact too many or too few (at a shared edge under a
+    sphere) moved the spheres by 1e-4 m. The bed pushes on the floor with its weight's share (fz of the
+    mesh)."""
+    mesh = open_box(tmp_path / "box.stl", (0, 0, 0), (0.012, 0.008, 0.03))
+    runs = []
+    for walls in ("fix walls all wall/plane xplane 0 0.012 yplane 0 0.008 zplane 0 NULL",
+                  f"fix walls all wall/mesh file {mesh}"):
+        sim = dem.Simulation(screen=False)
+        sim.commands(BED.format(walls=walls))
+        sim.run(2000)
+        runs.append(sim)
+    a, b = runs
+    assert a.atom.natoms == b.atom.natoms > 400
+    ta, tb = np.argsort(a.atom.local("tag")), np.argsort(b.atom.local("tag"))
+    assert np.abs(a.atom.local("x")[ta] - b.atom.local("x")[tb]).max() < 1e-6 * 1e-3
+    assert a.modify.find("walls").ncontacts == b.modify.find("walls").ncontacts > 20    # measured 39
+    weight = float(a.atom.local("rmass").sum()) * 9.81
+    assert 0.3 * weight < b.thermo_keyword("f_walls[fz]") * -1 < 1.5 * weight
+
+
+def test_glued_composite_on_a_mesh_floor_as_on_the_plane(tmp_path):
+    """A dumbbell of two glued spheres (radii 1 and 2 mm) dropped tilted on a floor of 18 triangles,
+    `pair_style glued/convex` (Model B): each sphere component touches the floor, as on `wall/plane`
+    (sphere components meet the triangles at their closest points, as spheres do). After bouncing and
+    coming to rest on both spheres (60000 steps, 0.12 s), both walls carry 2 contacts and, frictionless,
+    the positions agree to 1e-12 m (measured 1e-17). With friction, 1e-6 m (measured 7e-8): wall/plane
+    tilts a composite's support direction by 1e-9 to break ties between equal points (dem/contact/
+    _surface.pxd), which moves its contact points by 1e-12 m, and the frictional slide to rest grows such
+    differences ~2000 times (a 1e-13 change of the start orientation moves the plane's own result 2e-10 m)."""
+    mesh = floor(tmp_path / "f.stl", 3, half=0.01)
+    for law, tol in (("kn 1e5 en 0.5", 1e-12), ("kn 1e5 en 0.5 mu 0.3 gamma_t 2000", 1e-6)):
+        out = []
+        for wall in (f"fix floor all wall/plane zplane 0 NULL {law}", f"fix floor all wall/mesh file {mesh} {law}"):
+            sim = dem.Simulation(screen=False)
+            sim.commands(f"""units si
+                boundary f f f
+                region box block -0.01 0.01 -0.01 0.01 -0.001 0.02
+                create_box 1 box
+                shape a glued component sphere 0.001 at 0 0 0 component sphere 0.002 at 0.003 0 0
+                create_atoms 1 single 0.0004 0.0003 0.004 shape a density 2500 quat 0.95 0.1 0.25 0.1
+                pair_style glued/convex
+                pair_coeff * * kn 1e5 en 0.5
+                fix integrate all nve/shape
+                fix gravity all gravity 9.81 vector 0 0 -1
+                {wall}
+                timestep 2e-6
+                run 60000""")
+            out.append((sim.atom.local("x")[0].copy(), sim.modify.find("floor").ncontacts))
+        (xp, cp), (xm, cm) = out
+        assert np.abs(xp - xm).max() < tol
+        assert cp == cm == 2

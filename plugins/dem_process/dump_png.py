@@ -26,7 +26,8 @@ class DumpPNG(Dump):
     across the axis at coordinate S along it (e.g. `slice 0.012` for the plane y = 0.012), each drawn as
     its true section by that plane: a disc of the sphere's section, the polygon where the plane cuts the
     mesh of each convex piece of a shaped particle; particles the plane misses are not drawn (a particle
-    is cut at its position in the box, not at its periodic images)."""
+    is cut at its position in the box, not at its periodic images). Mesh walls (`fix wall/mesh`) are drawn
+    as their section by the picture's plane (the slice, or the plane through the centre), grey lines."""
 
     style = "png"
     keywords = {"fields": None, "drum": 1, "axis": 1, "centre": 2, "radius": 1, "slice": 1, "vmax": 1,
@@ -104,5 +105,7 @@ class DumpPNG(Dump):
         render_cross_section(path, arrays["position"], arrays["velocity"], arrays["radius"],
                              axis=axis, centre=centre, drum_radius=rdrum, up=up_direction(self.sim),
                              vmax=self.vmax, title=title, size_px=self.size, section=section,
-                             spin=drum.omega if drum is not None else 0.0, **shaped)
+                             spin=drum.omega if drum is not None else 0.0,
+                             walls=[w for w in (f.surface_mesh() for f in self.sim.modify.fixes) if w is not None],
+                             **shaped)
         self.last_path = os.path.abspath(path)

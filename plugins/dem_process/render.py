@@ -229,9 +229,34 @@ def _draw_guides(ax, lim, right, upv, drum_radius, spin):
                                      arrowstyle="-|>", mutation_scale=14, color="k", lw=1.5))
 
 
+def wall_sections(walls, centre, basis, section):
+    """Segments (m, 2, 2) in the picture's coordinates where the triangle meshes `walls` [(vertices (nv, 3),
+    triangles (nt, 3)), ...] cross the picture's plane (at `section` along the viewing axis from centre, 0
+    for a projection)."""
+    right, upv, toward = basis
+    out = []
+    for vertices, triangles in walls:
+        rel = np.asarray(vertices, dtype=float) - np.asarray(centre, dtype=float)
+        p = rel[np.asarray(triangles)]                              # (nt, 3, 3)
+        s = p @ toward - float(section or 0.0)                      # (nt, 3): signed distances
+        ends = []
+        for k in range(3):                                          # edge k -> k+1 crossing the plane
+            a, b = p[:, k], p[:, (k + 1) % 3]
+            sa, sb = s[:, k], s[:, (k + 1) % 3]
+            cross = (sa < 0.0) != (sb < 0.0)
+            t = np.where(cross, sa / np.where(cross, sa - sb, 1.0), 0.0)
+            ends.append((cross, a + t[:, None] * (b - a)))
+        hits = np.stack([c for c, _ in ends], axis=1)
+        two = hits.sum(axis=1) == 2
+        pts = np.stack([q for _, q in ends], axis=1)[two]           # (m, 3 edges, 3)
+        pts = pts[hits[two]].reshape(-1, 2, 3)
+        out.append(np.stack([pts @ right, pts @ upv], axis=2))
+    return np.concatenate(out) if out else np.zeros((0, 2, 2))
+
+
 def render_cross_section(path, x, v, radius, axis=1, centre=(0.0, 0.0, 0.0), drum_radius=None,
                          up=(0.0, 0.0, 1.0), vmax=None, title=None, size_px=700, cmap="jet", shapes=None,
-                         shape=None, quat=None, section=None, spin=0.0):
+                         shape=None, quat=None, section=None, spin=0.0, walls=()):
     """Write a PNG of particles (positions x, velocities v, radii) seen along `axis` (0, 1, 2), centred on
     `centre`; the drum outline of radius drum_radius; colours from 0 to vmax (default: the largest
     speed).
@@ -245,8 +270,9 @@ def render_cross_section(path, x, v, radius, axis=1, centre=(0.0, 0.0, 0.0), dru
 
     Also drawn: a scale bar (bottom left), the directions of the picture's axes (bottom right) and, with a
     drum whose spin (rad/s about the viewing axis, counter-clockwise as seen: positive) is not 0, an arrow
-    along its rim in the direction it turns."""
-    from matplotlib.collections import EllipseCollection, PathCollection
+    along its rim in the direction it turns; `walls` (mesh walls: [(vertices, triangles), ...]) as their
+    section by the picture's plane, grey lines."""
+    from matplotlib.collections import EllipseCollection, LineCollection, PathCollection
     from matplotlib.patches import Circle
     from matplotlib.path import Path
 
@@ -278,11 +304,15 @@ def render_cross_section(path, x, v, radius, axis=1, centre=(0.0, 0.0, 0.0), dru
     ax = fig.add_axes([0.02, 0.02, 0.82, 0.9])
     ax.set_aspect("equal")
     ax.set_axis_off()
+    segments = wall_sections(walls, centre, basis, section)
+    if len(segments):
+        ax.add_collection(LineCollection(segments, colors="0.35", linewidths=1.5))
     if drum_radius:
         ax.add_patch(Circle((0.0, 0.0), drum_radius, fill=False, lw=1.5, color="k"))
         lim = PAD * drum_radius
     else:
-        lim = PAD * max(np.abs(np.r_[h, u]).max() + radius.max() if len(h) else 1.0, 1e-12)
+        lim = PAD * max(np.abs(np.r_[h, u]).max() + radius.max() if len(h) else 1.0,
+                        np.abs(segments).max() if len(segments) else 0.0, 1e-12)
     ax.set_xlim(-lim, lim)
     ax.set_ylim(-lim, lim)
     _draw_guides(ax, lim, right, upv, drum_radius if spin else None, spin)

@@ -8,18 +8,19 @@ world = M (X - C0) + C0 + D. Each particle is taken into the reference frame, me
 cells its bounding sphere overlaps, and its contacts go back to the world frame for the shared law
 (dem_contact/apply.pxd) with m_ij = m_i and the mesh's velocity V + omega x (p - C0 - D) at the point.
 
-One contact per touched feature, not per triangle. A sphere meets a triangle at the closest point, which
-lies inside the triangle (a face), on an edge or at a vertex. Edges and vertices are shared: a sphere
-rolling over two coplanar triangles sees the shared edge from both, and one over a convex ridge has the
-same closest point on both sides. The hits of a particle (and of each piece of a composite) are taken
-deepest first, and one is dropped when a kept hit's triangle contains its edge or vertex (that triangle's
-closest point is at least as close), when its point is a kept hit's point, or, for shaped bodies, when its
-triangle is coplanar with a kept hit's (a flat face over several triangles: one contact per plane). A
-sphere crossing from one triangle to a coplanar neighbour thus feels one contact whose normal and overlap
-do not jump.
+One contact per touched feature, not per triangle: a sphere over a plane cut into triangles overlaps many
+of them but meets the surface once. A sphere meets a triangle at its closest point, inside the triangle
+(a face), on an edge or at a vertex; one on an edge or a vertex is no contact when another triangle around
+that feature is closer (the surface's closest point lies there: a sphere near a shared edge, or over a
+fan). The hits left (and the hits of each piece of a composite) are taken deepest first, and one is
+dropped when a kept hit's triangle contains its edge or vertex (a convex ridge or apex, equally close from
+both sides), when its point is a kept hit's point, or, for shaped bodies, when its triangle is coplanar
+with a kept hit's (a flat face over several triangles: one contact per plane). A sphere crossing from one
+triangle to a coplanar neighbour thus feels one contact whose normal and overlap do not jump; one in a
+valley touches both of its sides.
 
 Shaped bodies (their true body, as the other walls): GJK against the triangle, EPA for the depth, the
-contact point midway in the overlap; `multipoint` (sharp polytopes): every vertex beyond the plane of a
+contact point midway in the overlap (a sphere component of a composite: its closest point, as a sphere); `multipoint` (sharp polytopes): every vertex beyond the plane of a
 face hit, each with the hit's overlap and weight 1/alpha (Descantes 2022 eq. 3), as wall/plane.
 
 Tangential history: NSLOT slots per particle of (piece + 1, normal in the mesh frame, xi); a contact takes
@@ -33,7 +34,7 @@ cimport numpy as cnp
 from dem._particles cimport ParticleView, Particles
 from dem.contact.record cimport Contact
 from dem.contact._gjk cimport gjk_distance, epa_penetration, Simplex, GJK_SEPARATED
-from dem.shapes._support cimport ShapeRef, BOX, POLYHEDRON, MARGIN, NPARAM, support_world, vertex_world
+from dem.shapes._support cimport ShapeRef, SPHERE, BOX, POLYHEDRON, MARGIN, NPARAM, support_world, vertex_world
 from dem.shapes._table cimport (ShapeView, TableView, body_ref, equivalent_radius, pose_body, round_body,
                                 ncomponents, component_row, pose_component)
 from dem_contact.apply cimport Body, apply_wall_law, contact_radius
@@ -87,6 +88,7 @@ cdef struct Hit:
 cdef class MeshIndex:
     """The mesh in its reference frame and its grid of cells of side `cell` (see the module doc)."""
     cdef readonly object verts, tris, edges, normals, cell_start, cell_tris, stamp
+    cdef readonly object edge_start, edge_tris, vertex_start, vertex_tris
     cdef readonly double lo0, lo1, lo2, h
     cdef readonly int n0, n1, n2
 
@@ -104,6 +106,9 @@ cdef class MeshIndex:
         self.cell_tris = np.empty(int(start[len(start) - 1]), dtype=np.int32)
         _bin(self, start.copy(), self.cell_tris)
         self.stamp = np.full(len(mesh.triangles), -1, dtype=np.int64)
+        # the triangles around each edge and each vertex (CSR)
+        self.edge_start, self.edge_tris = _incidence(mesh.edges, int(mesh.edges.max()) + 1)
+        self.vertex_start, self.vertex_tris = _incidence(mesh.triangles, len(mesh.vertices))
 
     @property
     def cells(self):
@@ -112,6 +117,16 @@ cdef class MeshIndex:
     @property
     def entries(self):
         return len(self.cell_tris)
+
+
+def _incidence(ids, n):
+    """(start, triangles): the triangles holding item k (an edge or vertex id of the (nt, 3) array ids)
+    are triangles[start[k]:start[k + 1]]."""
+    flat = np.asarray(ids, dtype=np.int64).ravel()
+    order = np.argsort(flat, kind="stable")
+    start = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(np.bincount(flat, minlength=n), out=start[1:])
+    return start, (order // 3).astype(np.int32)
 
 
 def _bin(MeshIndex g, i64[::1] slot, out):
@@ -302,6 +317,27 @@ cdef inline bint _contains(const int[:, ::1] tris, const int[:, ::1] edges, int 
     return False
 
 
+cdef bint _beaten(const double[:, ::1] V, const int[:, ::1] tris, const i64[::1] start, const int[::1] around,
+                  int fid, int t, const double* x, double dist, double tol) noexcept nogil:
+    """Some triangle other than t around the edge or vertex fid (start, around: its incidence) is closer
+    to x than dist - tol: the closest point of t, on that feature, is then no local closest point of the
+    surface (a sphere over a plane cut into triangles overlaps many of them, and meets the surface once)."""
+    cdef double q[3]
+    cdef double y[3]
+    cdef int fk, fi, u, d
+    cdef i64 e
+    for e in range(start[fid], start[fid + 1]):
+        u = around[e]
+        if u == t:
+            continue
+        _closest(&V[tris[u, 0], 0], &V[tris[u, 1], 0], &V[tris[u, 2], 0], x, q, &fk, &fi)
+        for d in range(3):
+            y[d] = x[d] - q[d]
+        if sqrt(_dot(y, y)) < dist - tol:
+            return True
+    return False
+
+
 cdef int _shaped_hit(const ShapeRef* S, const double* R, const double* x, const double* a, const double* b,
                      const double* c, const double* tn, Hit* hit) noexcept nogil:
     """A posed convex body (reference frame) against the triangle (a, b, c) of unit normal tn: 1 and the hit
@@ -400,6 +436,10 @@ def mesh_walls(ParticleView view, int groupbit, MeshIndex mesh, const double[::1
     cdef const i64[::1] cstart = mesh.cell_start
     cdef const int[::1] ctris = mesh.cell_tris
     cdef i64[::1] stamp = mesh.stamp
+    cdef const i64[::1] estart = mesh.edge_start
+    cdef const int[::1] etris = mesh.edge_tris
+    cdef const i64[::1] vstart = mesh.vertex_start
+    cdef const int[::1] vtris = mesh.vertex_tris
     cdef double h = mesh.h
     cdef double glo[3]
     cdef int dims[3]
@@ -484,6 +524,10 @@ def mesh_walls(ParticleView view, int groupbit, MeshIndex mesh, const double[::1
                                 dist = sqrt(_dot(y, y))
                                 if dist >= r or dist == 0.0 or _room(&hits, &cap, nh) < 0:
                                     continue
+                                if fk == F_EDGE and _beaten(V, tris, estart, etris, edges[t, fi], t, xr, dist, 1e-9 * r):
+                                    continue
+                                if fk == F_VERTEX and _beaten(V, tris, vstart, vtris, tris[t, fi], t, xr, dist, 1e-9 * r):
+                                    continue
                                 hits[nh].tri, hits[nh].piece, hits[nh].npts, hits[nh].fkind = t, 0, 1, fk
                                 hits[nh].fid = t if fk == F_FACE else (edges[t, fi] if fk == F_EDGE else tris[t, fi])
                                 hits[nh].key = dist
@@ -510,6 +554,26 @@ def mesh_walls(ParticleView view, int groupbit, MeshIndex mesh, const double[::1
                                 dn = _dot(y, &nrm[t, 0])
                                 if dn >= rc or dn <= -rc or _room(&hits, &cap, nh) < 0:
                                     continue                # the piece's sphere misses the plane
+                                if S.kind == SPHERE:        # a sphere component: as a sphere, exactly
+                                    _closest(&V[tris[t, 0], 0], &V[tris[t, 1], 0], &V[tris[t, 2], 0], xc, q, &fk, &fi)
+                                    for d in range(3):
+                                        y[d] = xc[d] - q[d]
+                                    dist = sqrt(_dot(y, y))
+                                    if dist >= rc or dist == 0.0:
+                                        continue
+                                    if fk == F_EDGE and _beaten(V, tris, estart, etris, edges[t, fi], t, xc, dist, 1e-9 * rc):
+                                        continue
+                                    if fk == F_VERTEX and _beaten(V, tris, vstart, vtris, tris[t, fi], t, xc, dist, 1e-9 * rc):
+                                        continue
+                                    hits[nh].tri, hits[nh].piece, hits[nh].npts, hits[nh].fkind = t, c, 1, fk
+                                    hits[nh].fid = t if fk == F_FACE else (edges[t, fi] if fk == F_EDGE else tris[t, fi])
+                                    hits[nh].key = dist - rc
+                                    hits[nh].delta = rc - dist
+                                    for d in range(3):
+                                        hits[nh].n[d] = y[d] / dist
+                                        hits[nh].p[d] = q[d] - 0.5 * (rc - dist) * hits[nh].n[d]
+                                    nh += 1
+                                    continue
                                 if not _shaped_hit(&S, Rc, xc, &V[tris[t, 0], 0], &V[tris[t, 1], 0],
                                                    &V[tris[t, 2], 0], &nrm[t, 0], &hits[nh]):
                                     continue

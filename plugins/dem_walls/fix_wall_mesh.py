@@ -136,6 +136,9 @@ class FixWallMesh(WallCoefficients, Fix):
                     list(dem_contact.KEYWORDS)
                 raise a.error(f"unknown keyword '{key}'{did_you_mean(key, known)}")
         self.mesh = mesh
+        self.static = None         # the pose of a mesh that never moves, computed once
+        if not np.any(self.velocity) and self.omega_target == 0.0:
+            self.static = self.pose(0.0)
         self.parse_law(law)
         self.elapsed = 0.0         # time since the fix was defined (s)
         self.token = 0             # the kernel's triangle stamps (MeshIndex)
@@ -163,6 +166,8 @@ class FixWallMesh(WallCoefficients, Fix):
     def pose(self, t=None):
         """The kernel's pose vector at time t since the definition (default: now): POSE."""
         t = self.elapsed if t is None else t
+        if self.static is not None:
+            return self.static
         f, integral = self._rate(t)
         p = np.zeros(POSE["N"])
         p[POSE["M"]:POSE["M"] + 9] = rotation_about(self.axis, self.omega_target * integral).ravel()
