@@ -190,6 +190,12 @@ def test_moving_floor_drags_a_sphere_to_two_sevenths_of_its_speed(tmp_path):
     assert v[0] == pytest.approx(2.0 * U / 7.0, abs=2e-4 * U)
     assert abs(v[1]) < 1e-9
     assert sim.thermo_keyword("f_w[fx]") == pytest.approx(0.0, abs=1e-6)   # rolling: no force left
+    # the same motion from a table (the floor at 0 at t = 0 and U at t = 1 s): the same run to round-off
+    (tmp_path / "motion.txt").write_text(f"# t dx dy dz angle\n0 0 0 0 0\n1.0 {U!r} 0 0 0\n")
+    table = sphere_sim(f"fix w all wall/mesh file {mesh} table {tmp_path / 'motion.txt'} {LAW}",
+                       x0=f"0 0 {R_SPHERE - 1e-6!r}", v="0 0 0", gravity="0 0 -1", box="-0.5 0.5 -0.5 0.5 -0.05 0.1")
+    table.run(10000)
+    assert np.abs(table.atom.local("v")[0] - v).max() < 1e-12 * U
 
 
 def test_turning_mesh_torque_and_drag(tmp_path):
@@ -235,6 +241,12 @@ def test_restart_continues_bitwise(tmp_path):
 
 def test_errors_name_the_problem(tmp_path):
     mesh = floor(tmp_path / "f.stl", 1)
+    (tmp_path / "bad.txt").write_text("0 0 0 0 0\n0 1 0 0 0\n")
+    with pytest.raises(DemError, match=r"bad.txt:2: times must increase"):
+        sphere_sim(f"fix w all wall/mesh file {mesh} table {tmp_path / 'bad.txt'} {LAW}")
+    (tmp_path / "good.txt").write_text("0 0 0 0 0\n1 1 0 0 0\n")
+    with pytest.raises(DemError, match="cannot be combined with linear"):
+        sphere_sim(f"fix w all wall/mesh file {mesh} table {tmp_path / 'good.txt'} linear 1 0 0 {LAW}")
     with pytest.raises(DemError, match="missing.stl"):
         sphere_sim(f"fix w all wall/mesh file {tmp_path / 'missing.stl'} {LAW}")
     with pytest.raises(DemError, match="unknown keyword 'sclae'.*scale"):

@@ -11,7 +11,7 @@ from dem.errors import DemError, did_you_mean
 from dem.fix import Fix, Stage
 
 from . import _wall_mesh
-from .mesh import load, rotation_about
+from .mesh import load, read_motion, rotation_about
 from ._walls import LAWS as LAW_CODES
 from .wall_fix import POINT_MODES, law_name
 from dem_contact.wall_coeffs import WallCoefficients
@@ -24,6 +24,7 @@ MAX_CELLS = 4_000_000      # the grid of the triangles: cells of at least a part
 class FixWallMesh(WallCoefficients, Fix):
     """fix ID group wall/mesh file FILE [scale S] [rotate axis AX AY AZ angle DEG] [move DX DY DZ]
         [linear VX VY VZ] [turn origin OX OY OZ axis AX AY AZ rpm W | omega W] [ramp T]
+        [table FILE [origin OX OY OZ axis AX AY AZ]]
         [point deepest|multipoint] [law grains3d|descantes]
         [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR | model hertz E E nu NU en EN mu MU mu_roll MR]
 
@@ -39,8 +40,12 @@ class FixWallMesh(WallCoefficients, Fix):
     * Motion (a rigid body, from when the fix is defined): `linear VX VY VZ` translates it at that
       velocity; `turn origin OX OY OZ axis AX AY AZ rpm W` (or `omega W`, rad/s) turns it about the axis
       through the origin point (which moves with `linear`), `ramp T` bringing both rates from 0 up to
-      their values over T seconds. The mesh's velocity at the contact point, V + Omega x (p - origin),
-      enters the contact law, so a moving mesh drags the particles (a mixer blade, a conveyor).
+      their values over T seconds. `table FILE`: an imposed motion instead, lines `t dx dy dz angle` (s, m,
+      degrees; `#` comments) giving the displacement and the angle turned about the axis through the
+      origin (given after the file, default the z axis through 0 0 0) at times t since the fix was
+      defined, increasing; linear in between, held at the first and last lines outside them (the
+      velocity is then 0). The mesh's velocity at the contact point, V + Omega x (p - origin), enters the
+      contact law, so a moving mesh drags the particles (a mixer blade, a conveyor, a shaking sieve).
     * Contacts: every particle of the group against every triangle it overlaps, one contact per touched
       feature: a sphere meets the triangles at their closest points, and a contact at a shared edge or
       vertex counts once, so a sphere rolling across two coplanar triangles, or over a convex edge, feels
@@ -73,7 +78,8 @@ class FixWallMesh(WallCoefficients, Fix):
     behind = 0                 # a mesh has two sides: no particle is behind it
     stages = Stage.POST_FORCE | Stage.END_OF_STEP
     usage = ("file FILE [scale S] [rotate axis AX AY AZ angle DEG] [move DX DY DZ] [linear VX VY VZ] "
-             "[turn origin OX OY OZ axis AX AY AZ rpm W | omega W] [ramp T] [point deepest|multipoint] "
+             "[turn origin OX OY OZ axis AX AY AZ rpm W | omega W] [ramp T] [table FILE [origin OX OY OZ axis "
+             "AX AY AZ]] [point deepest|multipoint] "
              "[law grains3d|descantes] [kn .. en .. mu .. | model hertz E .. nu .. en .. mu ..]")
 
     def __init__(self, sim, fid, group, args):
@@ -91,6 +97,7 @@ class FixWallMesh(WallCoefficients, Fix):
         self.axis = np.array([0.0, 0.0, 1.0])
         self.omega_target = 0.0
         self.ramp = 0.0
+        self.motion_table = None   # (t, displacement (n, 3), angle (rad)) of `table FILE`
         self.point = 0
         i, law = 2, []
         while i < len(a):
@@ -117,6 +124,15 @@ class FixWallMesh(WallCoefficients, Fix):
                 self.axis = self._unit(a, i + 6, "turn axis")
                 self.omega_target = a.float(i + 10, a[i + 9]) * (RPM if a[i + 9] == "rpm" else 1.0)
                 i += 11
+            elif key == "table":
+                self.motion_table = read_motion(a[i + 1], f"fix {fid} wall/mesh")
+                i += 2
+                if i < len(a) and a[i] == "origin":
+                    if a[i + 4] != "axis":
+                        raise a.error("table: expected 'table FILE origin OX OY OZ axis AX AY AZ'")
+                    self.origin = np.array(a.floats(i + 1, 3, "table origin"))
+                    self.axis = self._unit(a, i + 5, "table axis")
+                    i += 8
             elif key == "ramp":
                 self.ramp = a.float(i + 1, "ramp", nonneg=True)
                 i += 2
@@ -132,12 +148,14 @@ class FixWallMesh(WallCoefficients, Fix):
                 law += a.words[i:i + 2]
                 i += 2
             else:
-                known = ["scale", "rotate", "move", "linear", "turn", "ramp", "point", "law"] + \
+                known = ["scale", "rotate", "move", "linear", "turn", "ramp", "table", "point", "law"] + \
                     list(dem_contact.KEYWORDS)
                 raise a.error(f"unknown keyword '{key}'{did_you_mean(key, known)}")
+        if self.motion_table is not None and (np.any(self.velocity) or self.omega_target != 0.0 or self.ramp):
+            raise a.error("table gives the motion: it cannot be combined with linear, turn or ramp")
         self.mesh = mesh
         self.static = None         # the pose of a mesh that never moves, computed once
-        if not np.any(self.velocity) and self.omega_target == 0.0:
+        if not np.any(self.velocity) and self.omega_target == 0.0 and self.motion_table is None:
             self.static = self.pose(0.0)
         self.parse_law(law)
         self.elapsed = 0.0         # time since the fix was defined (s)
@@ -163,18 +181,32 @@ class FixWallMesh(WallCoefficients, Fix):
             return t / self.ramp, 0.5 * t * t / self.ramp
         return 1.0, t - 0.5 * self.ramp
 
+    def motion(self, t):
+        """(displacement, angle, velocity, rate) of the mesh at time t since the definition."""
+        if self.motion_table is None:
+            f, integral = self._rate(t)
+            return self.velocity * integral, self.omega_target * integral, self.velocity * f, self.omega_target * f
+        times, disp, angle = self.motion_table
+        k = min(max(int(np.searchsorted(times, t, side="right")) - 1, 0), len(times) - 2)
+        inside = times[0] <= t <= times[-1] and len(times) > 1
+        span = times[k + 1] - times[k] if len(times) > 1 else 1.0
+        D = np.array([np.interp(t, times, disp[:, d]) for d in range(3)])
+        rate = (angle[k + 1] - angle[k]) / span if inside else 0.0
+        V = (disp[k + 1] - disp[k]) / span if inside else np.zeros(3)
+        return D, float(np.interp(t, times, angle)), V, rate
+
     def pose(self, t=None):
         """The kernel's pose vector at time t since the definition (default: now): POSE."""
         t = self.elapsed if t is None else t
         if self.static is not None:
             return self.static
-        f, integral = self._rate(t)
+        D, angle, V, rate = self.motion(t)
         p = np.zeros(POSE["N"])
-        p[POSE["M"]:POSE["M"] + 9] = rotation_about(self.axis, self.omega_target * integral).ravel()
+        p[POSE["M"]:POSE["M"] + 9] = rotation_about(self.axis, angle).ravel()
         p[POSE["C"]:POSE["C"] + 3] = self.origin
-        p[POSE["D"]:POSE["D"] + 3] = self.velocity * integral
-        p[POSE["V"]:POSE["V"] + 3] = self.velocity * f
-        p[POSE["W"]:POSE["W"] + 3] = self.axis * self.omega_target * f
+        p[POSE["D"]:POSE["D"] + 3] = D
+        p[POSE["V"]:POSE["V"] + 3] = V
+        p[POSE["W"]:POSE["W"] + 3] = self.axis * rate
         return p
 
     def surface_mesh(self):
@@ -235,8 +267,7 @@ class FixWallMesh(WallCoefficients, Fix):
         comm = self.sim.comm
         force = [comm.sum(float(v)) for v in self.stats[STAT["FORCE"]:STAT["FORCE"] + 3]]
         torque = [comm.sum(float(v)) for v in self.stats[STAT["TORQUE"]:STAT["TORQUE"] + 3]]
-        _, integral = self._rate(self.elapsed)
-        out = {"contacts": comm.sum(self.ncontacts), "angle": self.omega_target * integral,
+        out = {"contacts": comm.sum(self.ncontacts), "angle": self.motion(self.elapsed)[1],
                "torque": float(np.dot(torque, self.axis))}
         out.update(zip(("fx", "fy", "fz"), force))
         out.update(zip(("tx", "ty", "tz"), torque))

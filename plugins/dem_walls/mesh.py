@@ -36,7 +36,7 @@ from scipy.spatial import cKDTree
 
 from dem.errors import DemError
 
-__all__ = ["Mesh", "load", "read_triangles", "rotation_about", "weld"]
+__all__ = ["Mesh", "load", "read_motion", "read_triangles", "rotation_about", "weld"]
 
 _BINARY_HEADER = b"binary STL written by dem (dem_walls.mesh)"
 _STL_RECORD = np.dtype([("normal", "<f4", (3,)), ("v", "<f4", (3, 3)), ("attr", "<u2")])
@@ -410,3 +410,32 @@ def rotation_about(axis, angle):
     x, y, z = axis / length
     k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
     return np.eye(3) + np.sin(angle) * k + (1.0 - np.cos(angle)) * (k @ k)
+
+
+def read_motion(path, what):
+    """A motion table for a mesh wall: lines `t dx dy dz angle` (s, m, degrees), `#` comments and blank
+    lines ignored, times increasing. Returns (t (n,), displacement (n, 3), angle (n,) in radians); DemError
+    naming `what`, the file and the line otherwise."""
+    rows = []
+    try:
+        with open(path) as fh:
+            lines = fh.readlines()
+    except OSError as e:
+        raise DemError(f"{what}: cannot read the motion table '{path}': {e.strerror or e}") from None
+    for lineno, line in enumerate(lines, 1):
+        words = line.split("#", 1)[0].split()
+        if not words:
+            continue
+        if len(words) != 5:
+            raise DemError(f"{what}: {path}:{lineno}: expected 't dx dy dz angle', got {len(words)} value(s)")
+        try:
+            row = [float(w) for w in words]
+        except ValueError:
+            raise DemError(f"{what}: {path}:{lineno}: not a number in '{line.strip()}'") from None
+        if rows and not row[0] > rows[-1][0]:
+            raise DemError(f"{what}: {path}:{lineno}: times must increase ({row[0]:g} after {rows[-1][0]:g})")
+        rows.append(row)
+    if not rows:
+        raise DemError(f"{what}: the motion table '{path}' has no line")
+    table = np.array(rows)
+    return table[:, 0].copy(), np.ascontiguousarray(table[:, 1:4]), np.radians(table[:, 4])
