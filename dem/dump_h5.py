@@ -122,6 +122,30 @@ def xdmf_surface(h5name, step, time, particle_grid, npoints, ntris, cell_fields=
     return "\n".join(lines) + "\n"
 
 
+def xdmf_walls(h5name, step, time, frame_grid, walls):
+    """XDMF of a frame with mesh walls: a spatial collection of the frame's grid (particles, or particles and
+    their surfaces) and one triangle grid per wall, `walls` [(fix ID, npoints, ntris)], its posed points and
+    triangles at /frames/<frame>/walls/<fix ID>/."""
+    base = f"/frames/{frame_name(step)}/walls"
+    inner = "\n".join("  " + line for line in frame_grid.rstrip("\n").split("\n") if "<Time " not in line)
+    inner = inner.replace(f'<Grid Name="step_{int(step)}"', '<Grid Name="particles"', 1)
+    lines = [f'      <Grid Name="step_{int(step)}" GridType="Collection" CollectionType="Spatial">',
+             f'        <Time Value="{float(time)!r}"/>']
+    if "<Topology" in inner and 'NumberOfElements="0"' not in inner:   # the readers fail on an empty grid
+        lines.append(inner)
+    for fid, npoints, ntris in walls:
+        lines += [f'        <Grid Name={quoteattr("wall_" + fid)} GridType="Uniform">',
+                  f'          <Topology TopologyType="Triangle" NumberOfElements="{ntris}">',
+                  "            " + _data_item(h5name, f"{base}/{fid}/triangles", (ntris, 3), np.int64),
+                  "          </Topology>",
+                  '          <Geometry GeometryType="XYZ">',
+                  "            " + _data_item(h5name, f"{base}/{fid}/points", (npoints, 3), np.float64),
+                  "          </Geometry>",
+                  "        </Grid>"]
+    lines.append("      </Grid>")
+    return "\n".join(lines) + "\n"
+
+
 def xdmf_document(grids, name="particles"):
     """The whole XDMF file: a temporal collection of the given frame grids (texts of xdmf_grid)."""
     head = ('<?xml version="1.0" encoding="utf-8"?>\n'
@@ -162,6 +186,14 @@ class DumpH5(Dump):
             shape        (n,)   int32    shape index (-1: sphere)
 
     Keyword ``fields`` limits the per-particle datasets (``position`` is always written); default: all.
+
+    Mesh walls (``fix wall/mesh``), where they are at each frame::
+
+        /frames/<step>/walls/<fix ID>/points     (v,3) float64   the posed vertices
+                                     /triangles  (t,3) int64
+
+    and in the XDMF each frame is then a spatial collection of the particles and one triangle grid per
+    wall (``wall_<fix ID>``): ParaView shows the hopper or the mixer's blades with the particles.
 
     The XDMF names the HDF5 file relative to the XDMF file's own folder (both lie in one folder: the
     data items read ``file.h5:/frames/...``), so the two files can be moved together; ParaView's "Xdmf
@@ -319,6 +351,7 @@ class DumpH5(Dump):
             g = f.create_group(PARTIAL)
             try:
                 datasets, surf = self._fill_frame(f, g, frame)
+                walls = self._fill_walls(g)
             except BaseException:
                 del f[PARTIAL]
                 raise
@@ -332,6 +365,8 @@ class DumpH5(Dump):
             grid = xdmf_surface(h5name, frame.step, frame.time, grid, len(surf[0]), len(surf[1]), surf[3])
         elif self.surfaces and len(self.sim.shapes):
             grid = xdmf_surface(h5name, frame.step, frame.time, grid, 0, 0)
+        if walls:
+            grid = xdmf_walls(h5name, frame.step, frame.time, grid, walls)
         self._grids[frame.step] = grid
         atomic_write(self.xdmf_path, xdmf_document(self._grids.values(), name=str(self.id)))
 
@@ -365,6 +400,19 @@ class DumpH5(Dump):
                     cells[name] = (data.shape, data.dtype)
             surf = (points, tris, owner, cells)
         return datasets, surf
+
+    def _fill_walls(self, g):
+        """The mesh walls (fix wall/mesh), posed now, into group g/walls/<fix ID>: [(ID, points, triangles)]."""
+        walls = []
+        for fix in self.sim.modify.fixes:
+            mesh = fix.surface_mesh()
+            if mesh is None:
+                continue
+            w = g.require_group("walls").create_group(fix.id)
+            w.create_dataset("points", data=np.asarray(mesh[0], dtype=np.float64))
+            w.create_dataset("triangles", data=np.asarray(mesh[1], dtype=np.int64))
+            walls.append((fix.id, len(mesh[0]), len(mesh[1])))
+        return walls
 
     def data_item_path(self):
         """The HDF5 file as the XDMF names it: relative to the XDMF file's folder (the same folder: its

@@ -354,3 +354,39 @@ def test_glued_composite_on_a_mesh_floor_as_on_the_plane(tmp_path):
         (xp, cp), (xm, cm) = out
         assert np.abs(xp - xm).max() < tol
         assert cp == cm == 2
+
+
+def test_walls_in_the_dumps(tmp_path, monkeypatch):
+    """A turning floor written by dump vtk (a VTU per frame and wall, listed in the .pvd) and dump h5 (the
+    XDMF a spatial collection of the particles and the wall), read back with VTK's readers: the wall's
+    vertices where the turn has put them (to round-off)."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+    xdmf = pytest.importorskip("vtkmodules.vtkIOXdmf2")
+    mesh = floor(tmp_path / "f.stl", 2, half=0.05)
+    monkeypatch.chdir(tmp_path)
+    sim = sphere_sim(f"fix w all wall/mesh file {mesh} turn origin 0 0 0 axis 0 0 1 rpm 60 {LAW}\n"
+                     "dump v all vtk 100 out/p_*.vtu\ndump h all h5 100 out/p.h5",
+                     x0=f"0.02 0 {R_SPHERE - 1e-6!r}", v="0 0 0", gravity="0 0 -1")
+    sim.run(200)
+    angle = 2 * math.pi * sim.update.time                    # 60 rpm
+    rot = np.array([[math.cos(angle), -math.sin(angle), 0], [math.sin(angle), math.cos(angle), 0], [0, 0, 1]])
+    expected = sim.modify.find("w").mesh.vertices @ rot.T
+    r = vtkXMLUnstructuredGridReader()
+    r.SetFileName("out/p_200_w.vtu")
+    r.Update()
+    assert r.GetOutput().GetNumberOfCells() == 8
+    assert np.abs(vtk_to_numpy(r.GetOutput().GetPoints().GetData()) - expected).max() < 1e-15
+    assert 'part="1" file="p_200_w.vtu"' in (tmp_path / "out" / "p.pvd").read_text()
+    x = xdmf.vtkXdmfReader()
+    x.SetFileName("out/p.xdmf")
+    x.UpdateInformation()
+    x.UpdateTimeStep(sim.update.time)
+    out = x.GetOutputDataObject(0)
+    # the reader names the blocks after the grids, with the time index: particles[2], wall_w[2]
+    blocks = {out.GetMetaData(k).Get(out.NAME()).split("[")[0]: out.GetBlock(k) for k in range(out.GetNumberOfBlocks())}
+    assert set(blocks) == {"particles", "wall_w"}
+    assert blocks["particles"].GetNumberOfPoints() == 1
+    wall = blocks["wall_w"]
+    assert wall.GetNumberOfCells() == 8
+    assert np.abs(vtk_to_numpy(wall.GetPoints().GetData()) - expected).max() < 1e-15
