@@ -8,6 +8,7 @@ other word through the registry as ``cls(sim)(args)``. A DemError leaving a comm
 
 A quote opens only at the start of a word (so ``don't`` is a plain word) and must close at the end of one.
 """
+import os
 import re
 
 from .errors import DemError, unknown
@@ -189,6 +190,20 @@ class Input:
             return None
         source = self._stack[-1]
         return f"{source.name}:{source.lineno}"
+
+    def find_file(self, path):
+        """A file a command reads: `path` as given (relative to the folder dem runs in), or else relative to
+        the folder of the script being read (so an input finds the files shipped beside it from any
+        folder); the path as given when neither exists (the reader's error names it)."""
+        if os.path.isabs(path) or os.path.exists(path):
+            return path
+        for source in reversed(self._stack):
+            if source.path:
+                beside = os.path.join(os.path.dirname(os.path.abspath(source.path)), path)
+                if os.path.exists(beside):
+                    return beside
+                break
+        return path
 
     def substitute(self, text, quotes=True):
         """Replace ${name}, $x and $(expression[:format]); with ``quotes``, quoted text is left alone."""

@@ -29,7 +29,8 @@ class FixWallMesh(WallCoefficients, Fix):
         [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR | model hertz E E nu NU en EN mu MU mu_roll MR]
 
     A rigid wall made of a triangle mesh read from FILE: an STL file (ASCII or binary) or a Wavefront OBJ
-    (`.obj`; polygons are split into triangles), the path relative to the folder dem runs in. Vertices
+    (`.obj`; polygons are split into triangles), the path relative to the folder dem runs in or, if not
+    found there, to the folder of the input script (`meshes/hopper.stl` beside inputs/in.hopper). Vertices
     closer than 1e-9 of the mesh's size are merged, so that triangles share their edges and vertices
     (an STL file repeats them) and zero-area triangles are dropped. The mesh is one-sided in no way: a
     particle meets a triangle from either side (give closed walls, or open surfaces the particles stay
@@ -71,7 +72,7 @@ class FixWallMesh(WallCoefficients, Fix):
 
     Example (a hopper of inputs/meshes; inputs/in.hopper)::
 
-        fix hopper all wall/mesh file inputs/meshes/hopper.stl kn 2000 en 0.5 mu 0.5 ks 571
+        fix hopper all wall/mesh file meshes/hopper.stl kn 5000 en 0.5 mu 0.5 ks 1429
     """
 
     style = "wall/mesh"
@@ -88,7 +89,7 @@ class FixWallMesh(WallCoefficients, Fix):
         a.need(2)
         if a[0] != "file":
             raise a.error(f"expected 'file FILE' first, got '{a[0]}'")
-        self.path = a[1]
+        self.path = sim.input.find_file(a[1])
         mesh = load(self.path)
         if mesh.dropped:
             sim.warning(f"fix {fid} wall/mesh: {mesh.dropped} degenerate triangle(s) of {self.path} dropped")
@@ -125,7 +126,7 @@ class FixWallMesh(WallCoefficients, Fix):
                 self.omega_target = a.float(i + 10, a[i + 9]) * (RPM if a[i + 9] == "rpm" else 1.0)
                 i += 11
             elif key == "table":
-                self.motion_table = read_motion(a[i + 1], f"fix {fid} wall/mesh")
+                self.motion_table = read_motion(sim.input.find_file(a[i + 1]), f"fix {fid} wall/mesh")
                 i += 2
                 if i < len(a) and a[i] == "origin":
                     if a[i + 4] != "axis":
