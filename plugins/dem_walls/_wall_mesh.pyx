@@ -10,12 +10,12 @@ cells its bounding sphere overlaps, and its contacts go back to the world frame 
 
 One contact per touched feature, not per triangle: a sphere over a plane cut into triangles overlaps many
 of them but meets the surface once. A sphere meets a triangle at its closest point, inside the triangle
-(a face), on an edge or at a vertex; one on an edge or a vertex is no contact when another triangle around
-that feature is closer (the surface's closest point lies there: a sphere near a shared edge, or over a
-fan). The hits left (and the hits of each piece of a composite) are taken deepest first, and one is
-dropped when a kept hit's triangle contains its edge or vertex (a convex ridge or apex, equally close from
-both sides), when its point is a kept hit's point, or, for shaped bodies, when its triangle is coplanar
-with a kept hit's (a flat face over several triangles: one contact per plane). A sphere crossing from one
+(a face), on an edge or at a vertex. The hits of a particle (of each piece of a composite) are taken
+deepest first; one on an edge or a vertex is no contact when a closer (earlier) hit's triangle has that
+feature (the surface's closest point lies elsewhere: a sphere near a shared edge or over a fan; or, as
+close, on a convex ridge or apex seen from both sides: one is kept); one at a kept hit's point, or, for
+shaped bodies, in a kept hit's plane (a flat face over several triangles: one contact per plane) is the
+same contact. Every triangle closer than a hit overlaps the particle, so it is a hit too. A sphere crossing from one
 triangle to a coplanar neighbour thus feels one contact whose normal and overlap do not jump; one in a
 valley touches both of its sides.
 
@@ -79,6 +79,7 @@ ORIGIN[:] = [0.0, 0.0, 0.0]
 
 cdef struct Hit:
     int tri, piece, fkind, fid, npts
+    bint keep
     double key                      # order: smaller first (sphere: distance; shaped: minus the depth)
     double delta
     double n[3]                     # reference frame, from the mesh into the particle
@@ -87,8 +88,7 @@ cdef struct Hit:
 
 cdef class MeshIndex:
     """The mesh in its reference frame and its grid of cells of side `cell` (see the module doc)."""
-    cdef readonly object verts, tris, edges, normals, cell_start, cell_tris, stamp
-    cdef readonly object edge_start, edge_tris, vertex_start, vertex_tris
+    cdef readonly object verts, tris, edges, normals, cell_start, cell_tris, stamp, balls
     cdef readonly double lo0, lo1, lo2, h
     cdef readonly int n0, n1, n2
 
@@ -106,9 +106,11 @@ cdef class MeshIndex:
         self.cell_tris = np.empty(int(start[len(start) - 1]), dtype=np.int32)
         _bin(self, start.copy(), self.cell_tris)
         self.stamp = np.full(len(mesh.triangles), -1, dtype=np.int64)
-        # the triangles around each edge and each vertex (CSR)
-        self.edge_start, self.edge_tris = _incidence(mesh.edges, int(mesh.edges.max()) + 1)
-        self.vertex_start, self.vertex_tris = _incidence(mesh.triangles, len(mesh.vertices))
+        # each triangle's bounding ball (centroid, radius): most triangles near a particle are rejected by it
+        corners = mesh.vertices[mesh.triangles]
+        centre = corners.mean(axis=1)
+        radius = np.linalg.norm(corners - centre[:, None, :], axis=2).max(axis=1) * (1.0 + 1e-12)
+        self.balls = np.ascontiguousarray(np.column_stack([centre, radius]))
 
     @property
     def cells(self):
@@ -117,16 +119,6 @@ cdef class MeshIndex:
     @property
     def entries(self):
         return len(self.cell_tris)
-
-
-def _incidence(ids, n):
-    """(start, triangles): the triangles holding item k (an edge or vertex id of the (nt, 3) array ids)
-    are triangles[start[k]:start[k + 1]]."""
-    flat = np.asarray(ids, dtype=np.int64).ravel()
-    order = np.argsort(flat, kind="stable")
-    start = np.zeros(n + 1, dtype=np.int64)
-    np.cumsum(np.bincount(flat, minlength=n), out=start[1:])
-    return start, (order // 3).astype(np.int32)
 
 
 def _bin(MeshIndex g, i64[::1] slot, out):
@@ -317,27 +309,6 @@ cdef inline bint _contains(const int[:, ::1] tris, const int[:, ::1] edges, int 
     return False
 
 
-cdef bint _beaten(const double[:, ::1] V, const int[:, ::1] tris, const i64[::1] start, const int[::1] around,
-                  int fid, int t, const double* x, double dist, double tol) noexcept nogil:
-    """Some triangle other than t around the edge or vertex fid (start, around: its incidence) is closer
-    to x than dist - tol: the closest point of t, on that feature, is then no local closest point of the
-    surface (a sphere over a plane cut into triangles overlaps many of them, and meets the surface once)."""
-    cdef double q[3]
-    cdef double y[3]
-    cdef int fk, fi, u, d
-    cdef i64 e
-    for e in range(start[fid], start[fid + 1]):
-        u = around[e]
-        if u == t:
-            continue
-        _closest(&V[tris[u, 0], 0], &V[tris[u, 1], 0], &V[tris[u, 2], 0], x, q, &fk, &fi)
-        for d in range(3):
-            y[d] = x[d] - q[d]
-        if sqrt(_dot(y, y)) < dist - tol:
-            return True
-    return False
-
-
 cdef int _shaped_hit(const ShapeRef* S, const double* R, const double* x, const double* a, const double* b,
                      const double* c, const double* tn, Hit* hit) noexcept nogil:
     """A posed convex body (reference frame) against the triangle (a, b, c) of unit normal tn: 1 and the hit
@@ -436,10 +407,7 @@ def mesh_walls(ParticleView view, int groupbit, MeshIndex mesh, const double[::1
     cdef const i64[::1] cstart = mesh.cell_start
     cdef const int[::1] ctris = mesh.cell_tris
     cdef i64[::1] stamp = mesh.stamp
-    cdef const i64[::1] estart = mesh.edge_start
-    cdef const int[::1] etris = mesh.edge_tris
-    cdef const i64[::1] vstart = mesh.vertex_start
-    cdef const int[::1] vtris = mesh.vertex_tris
+    cdef const double[:, ::1] balls = mesh.balls
     cdef double h = mesh.h
     cdef double glo[3]
     cdef int dims[3]
@@ -517,16 +485,20 @@ def mesh_walls(ParticleView view, int groupbit, MeshIndex mesh, const double[::1
                             if stamp[t] == token + i:
                                 continue
                             stamp[t] = token + i
+                            for d in range(3):
+                                y[d] = xr[d] - balls[t, d]
+                            if _dot(y, y) >= (r + balls[t, 3]) * (r + balls[t, 3]):   # misses the triangle's ball
+                                continue
                             if sphere:
+                                for d in range(3):
+                                    y[d] = xr[d] - V[tris[t, 0], d]
+                                if fabs(_dot(y, &nrm[t, 0])) >= r:     # the sphere misses the plane
+                                    continue
                                 _closest(&V[tris[t, 0], 0], &V[tris[t, 1], 0], &V[tris[t, 2], 0], xr, q, &fk, &fi)
                                 for d in range(3):
                                     y[d] = xr[d] - q[d]
                                 dist = sqrt(_dot(y, y))
                                 if dist >= r or dist == 0.0 or _room(&hits, &cap, nh) < 0:
-                                    continue
-                                if fk == F_EDGE and _beaten(V, tris, estart, etris, edges[t, fi], t, xr, dist, 1e-9 * r):
-                                    continue
-                                if fk == F_VERTEX and _beaten(V, tris, vstart, vtris, tris[t, fi], t, xr, dist, 1e-9 * r):
                                     continue
                                 hits[nh].tri, hits[nh].piece, hits[nh].npts, hits[nh].fkind = t, 0, 1, fk
                                 hits[nh].fid = t if fk == F_FACE else (edges[t, fi] if fk == F_EDGE else tris[t, fi])
@@ -561,10 +533,6 @@ def mesh_walls(ParticleView view, int groupbit, MeshIndex mesh, const double[::1
                                     dist = sqrt(_dot(y, y))
                                     if dist >= rc or dist == 0.0:
                                         continue
-                                    if fk == F_EDGE and _beaten(V, tris, estart, etris, edges[t, fi], t, xc, dist, 1e-9 * rc):
-                                        continue
-                                    if fk == F_VERTEX and _beaten(V, tris, vstart, vtris, tris[t, fi], t, xc, dist, 1e-9 * rc):
-                                        continue
                                     hits[nh].tri, hits[nh].piece, hits[nh].npts, hits[nh].fkind = t, c, 1, fk
                                     hits[nh].fid = t if fk == F_FACE else (edges[t, fi] if fk == F_EDGE else tris[t, fi])
                                     hits[nh].key = dist - rc
@@ -590,20 +558,28 @@ def mesh_walls(ParticleView view, int groupbit, MeshIndex mesh, const double[::1
                     hits[m + 1] = hits[m]
                     m -= 1
                 hits[m + 1] = tmp
+            # a hit on an edge or a vertex is no contact when a closer triangle has that feature (any closer
+            # triangle overlaps the particle too: it is an earlier hit); a hit at a kept hit's point, or
+            # (shaped bodies) in a kept hit's plane, is the same contact
             tol = 1e-9 * r
-            nkeep = 0
             for j in range(nh):
-                keep = True
-                for m in range(nkeep):
+                hits[j].keep = True
+                for m in range(j):
                     if hits[m].piece != hits[j].piece:
+                        continue
+                    if _contains(tris, edges, hits[m].tri, hits[j].fkind, hits[j].fid):
+                        hits[j].keep = False
+                        break
+                    if not hits[m].keep:
                         continue
                     for d in range(3):
                         y[d] = hits[j].p[d] - hits[m].p[d]
-                    if (_contains(tris, edges, hits[m].tri, hits[j].fkind, hits[j].fid) or _dot(y, y) <= tol * tol
-                            or (not sphere and _dot(&nrm[hits[m].tri, 0], &nrm[hits[j].tri, 0]) > 1.0 - 1e-9)):
-                        keep = False
+                    if _dot(y, y) <= tol * tol or (not sphere and _dot(&nrm[hits[m].tri, 0], &nrm[hits[j].tri, 0]) > 1.0 - 1e-9):
+                        hits[j].keep = False
                         break
-                if keep:
+            nkeep = 0
+            for j in range(nh):
+                if hits[j].keep:
                     hits[nkeep] = hits[j]
                     nkeep += 1
             # multipoint: a sharp polytope touches a face at its vertices beyond the face's plane

@@ -32,9 +32,8 @@ class FixWallMesh(WallCoefficients, Fix):
     (`.obj`; polygons are split into triangles), the path relative to the folder dem runs in or, if not
     found there, to the folder of the input script (`meshes/hopper.stl` beside inputs/in.hopper). Vertices
     closer than 1e-9 of the mesh's size are merged, so that triangles share their edges and vertices
-    (an STL file repeats them) and zero-area triangles are dropped. The mesh is one-sided in no way: a
-    particle meets a triangle from either side (give closed walls, or open surfaces the particles stay
-    on one side of).
+    (an STL file repeats them) and zero-area triangles are dropped. The mesh has two sides: a particle
+    meets a triangle from either side, whatever the triangle's orientation.
 
     * Placement, applied in the order given: `scale S` (about the origin), `rotate axis AX AY AZ angle
       DEG` (about the origin, right-hand rule), `move DX DY DZ`.
@@ -54,21 +53,28 @@ class FixWallMesh(WallCoefficients, Fix):
       triangle with their true body (GJK, EPA depth), the contact point midway in the overlap, one
       contact per plane (a flat face over several coplanar triangles touches once); glued composites
       touch with each component (Model A or B as the pair style). `point multipoint`: a box or polyhedron
-      touching a triangle with a face or edge touches at each of its vertices beyond the triangle's plane,
-      each with the deepest overlap and 1/alpha of the force (Descantes 2022 eq. 3, as `fix wall/plane`).
+      whose contact with a triangle lies inside the triangle touches at each of its vertices beyond the
+      triangle's plane, each with the deepest overlap and 1/alpha of the force (Descantes 2022 eq. 3, as
+      `fix wall/plane`: a cube lying on a mesh floor on its 4 corners); at a triangle's edge or vertex it
+      keeps one point.
     * Law and coefficients as `fix wall/plane` (m_ij = m_i, the wall of infinite mass; without them
       those of each type with itself from pair_coeff; `law descantes`, `model hertz` with R* = R_i).
       The tangential spring is kept per particle and contact (6 at most at once), matched from step to
       step by the contact normal (within 60 degrees): it survives a move from one triangle to the next,
       rebuilds, restarts and migration between ranks.
-    * Cost: the triangles are binned once, in the mesh's own frame, into cells of about a particle
-      diameter; a particle meets only the triangles of the cells its bounding sphere overlaps. The mesh
-      is replicated on every rank (72 bytes a triangle plus the grid).
+    * Cost: the triangles are binned once, in the mesh's own frame, into cells of two triangle edges,
+      but at least a particle radius and at most a diameter; a particle meets only the triangles of the
+      cells its bounding sphere overlaps. The mesh
+      is replicated on every rank (about 120 bytes a triangle, 4 bytes per triangle listed in a cell and
+      8 per cell: 13 MB for the 10^5 triangles of benchmarks/mesh_wall.py).
 
     Thermo values: `f_ID[contacts]`, `f_ID[fx]`, `f_ID[fy]`, `f_ID[fz]` (force of the particles on the
-    mesh, N), `f_ID[tx]`, `f_ID[ty]`, `f_ID[tz]` (their torque on it about the turning origin, or the
-    world origin without `turn`, N m), `f_ID[torque]` (about the turning axis), `f_ID[angle]` (rad).
-    Global state kept for restarts: the time since the fix was defined.
+    mesh, N), `f_ID[tx]`, `f_ID[ty]`, `f_ID[tz]` (their torque on it about the turning origin, which moves
+    with the mesh, or the world origin without one, N m), `f_ID[torque]` (about the turning axis; z without
+    one), `f_ID[angle]` (rad).
+    Global state kept for restarts: the time since the fix was defined. Redefining the fix (same ID: e.g.
+    the impeller of inputs/in.mixer, at rest while the vessel fills, then turning) starts its motion
+    afresh from the placement given, and keeps the contacts' springs.
 
     Example (a hopper of inputs/meshes; inputs/in.hopper)::
 
@@ -155,6 +161,8 @@ class FixWallMesh(WallCoefficients, Fix):
         if self.motion_table is not None and (np.any(self.velocity) or self.omega_target != 0.0 or self.ramp):
             raise a.error("table gives the motion: it cannot be combined with linear, turn or ramp")
         self.mesh = mesh
+        v = mesh.vertices[mesh.triangles]
+        self.edge_length = float(np.median(np.linalg.norm(v - np.roll(v, 1, axis=1), axis=2)))
         self.static = None         # the pose of a mesh that never moves, computed once
         if not np.any(self.velocity) and self.omega_target == 0.0 and self.motion_table is None:
             self.static = self.pose(0.0)
@@ -230,7 +238,9 @@ class FixWallMesh(WallCoefficients, Fix):
         rmax = sim.comm.max(max([rmax] + [fix.max_radius() for fix in sim.modify.fixes]))
         lo, hi = self.mesh.bounds()
         extent = np.maximum(hi - lo, 1e-12 * max(float(np.max(hi - lo)), 1.0))
-        cell = max(2.0 * rmax, float(np.max(extent)) / 100.0)
+        # cells between a particle radius and diameter, near two triangle edges: a fine mesh gets small
+        # cells (fewer triangles listed with each particle), a coarse one cells of a particle diameter
+        cell = float(np.clip(2.0 * self.edge_length, rmax, 2.0 * rmax)) if rmax > 0 else 2.0 * self.edge_length
         while np.prod(np.floor(extent / cell) + 1) > MAX_CELLS:
             cell *= 1.5
         if self.index is None or self.index.h != cell:
