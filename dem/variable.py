@@ -26,6 +26,7 @@ def format_number(value):
 _TOKEN = re.compile(r"""\s*(?:
     (?P<num>(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)
   | (?P<name>[A-Za-z_][A-Za-z0-9_]*(?:\[\d+\])?)
+  | (?P<text>'[^']*')
   | (?P<op>==|!=|<=|>=|&&|\|\||\|\^|[-+*/^%<>!(),])
 )""", re.VERBOSE)
 
@@ -149,6 +150,11 @@ class _Parser:
             return node
         if kind == "name":
             return self.name(value)
+        if kind == "text":      # 'quoted text' (if conditions): any characters, compared as a word
+            if not self.strings:
+                raise self.error(f"quoted text {value} is only for the conditions of `if`")
+            text = value[1:-1]
+            return lambda ctx: text
         raise self.error(f"unexpected '{value}'")
 
     def name(self, word):

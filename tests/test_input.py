@@ -434,6 +434,15 @@ def test_if_without_else_and_word_comparison(sim):
     assert sim.calls == [("run", ["1"])]
 
 
+def test_if_compares_quoted_text(sim):
+    """'quoted text' holds any characters (a file name with dots and slashes) and compares as a word."""
+    run(sim, 'variable f string out/bed.restart\n'
+             'if "\'${f}\' == \'none\'" then "print none" else "print file"\n'
+             'if "\'${f}\' == \'out/bed.restart\' && 1 < 2" then "print same"\n')
+    assert sim.screen == ["file", "same"]
+    assert "only for the conditions of `if`" in error(sim, 'variable x equal "\'a\' + 1"\nprint $(v_x)\n').message
+
+
 def test_if_errors(sim):
     assert "expected if" in error(sim, 'if "1" "print x"\n').message
     assert "no command" in error(sim, 'if "1" then else "print x"\n').message

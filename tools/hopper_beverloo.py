@@ -6,7 +6,7 @@ rate against Beverloo's correlation for a round orifice, W = C rho_b sqrt(g) (D 
     python tools/hopper_beverloo.py                  # analyse the runs of --workdir, write the plot and table
 
 --run fills the hopper once (`dem -in inputs/in.hopper -var discharge 0`, its restart `settled.restart`),
-then discharges that bed through each orifice (`-var bed settled -var D ...`, series `hopper_dDD.dat`).
+then discharges that bed through each orifice (`-var from settled_settled.restart -var D ...`, series `hopper_dDD.dat`).
 The flow rate of an orifice is the slope of the discharged mass against time (least squares) over the
 steady part of the discharge: from `--skip` s after the first particle left (the flow starting) to the end
 of the run or until half the bed has left, whichever comes first. The bulk density rho_b is that of the
@@ -49,7 +49,7 @@ def run(workdir, orifices, np_, fill, discharge, n):
         subprocess.run(base + ["-var", "fill", str(fill), "-var", "discharge", "0", "-var", "out", "settled",
                                "-log", "fill.log", "-screen", "none"], cwd=workdir, check=True)
     for d in orifices:
-        subprocess.run(base + ["-var", "bed", "settled", "-var", "D", str(d),
+        subprocess.run(base + ["-var", "from", "settled_settled.restart", "-var", "D", str(d),
                                "-var", "discharge", str(discharge), "-var", "out", f"hopper_d{d}",
                                "-log", f"hopper_d{d}.log", "-screen", "none"], cwd=workdir, check=True)
 
