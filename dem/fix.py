@@ -47,6 +47,11 @@ class Fix:
     def setup(self):
         pass
 
+    def setup_output(self):
+        """At the start of a run, with its output: after the first force evaluation (a fix writing values
+        of the state writes them here, as thermo does)."""
+        pass
+
     def max_radius(self):
         """Bounding radius of particles this fix will create (ghost cutoff covers them from the start)."""
         return 0.0

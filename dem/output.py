@@ -75,6 +75,8 @@ class Output:
             self.thermo.header()
             self.thermo.line()
             self.last_thermo = step
+        for fix in self.sim.modify.fixes:
+            fix.setup_output()
         for dump in self.dumps.values():
             # a run continuing the last one (run every, run after run) writes no frame twice
             if step % dump.every == 0 and dump.last_step != step:

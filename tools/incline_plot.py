@@ -4,7 +4,8 @@
 and granular temperature, the kinetic energy in time, and the bulk coordination and solid fraction
 against the inertial number next to the paper's fits.
 
-    python tools/incline_plot.py PREFIX [PREFIX ...] [-o FIGURE.png] [--table]
+    python tools/incline_plot.py PREFIX [PREFIX ...] [-o FIGURE.png] [--table] [--dpi 80]
+                                 [--panels all|profiles|bulk] [--palette N]
 
 Each PREFIX is one run (one tilt): PREFIX.profile.dat, PREFIX.phi.dat (fix ave/profile, the last block:
 the final average), PREFIX.series.dat (fix print/series) and PREFIX.summary.txt (theta, d_eq...), as the
@@ -13,6 +14,17 @@ input writes them. Heights are from the floor, in d_eq. The bulk is the band fro
 is at least half the largest one of the profile. sigma_zz is drawn as computed (contacts, Moreau) and
 with its kinetic part rho phi T_zz added, which steady flow balances against the weight of the layer above
 (rho g cos(theta) times the solid above z). `--table` prints the bulk values as a Markdown table.
+
+Flow or not, from the kinetic energy series: "arrested" when the mean downslope velocity of the layer is
+below 0.05 sqrt(g d_eq) at the end, "accelerating" / "slowing" when its kinetic energy grows or falls by
+more than 10 % per 10 T_inertia (a straight line through log KE from 10 T_inertia after the tilt to the
+end: the runs of inputs/in.incline start from a layer still landing, see docs/validation.md), "steady"
+otherwise (the 10 % is this tool's choice, stated so). The table also gives the change of the mean
+kinetic energy over the averaging window from the window before it.
+
+The averages: fix ave/profile writes on steps that are multiples of Nfreq (as LAMMPS's fix ave/chunk),
+so the last block covers the whole window only when the window starts on such a step; the tool says so
+when the last block ends before the series does or covers less than the window.
 """
 import argparse
 
@@ -20,6 +32,8 @@ import numpy as np
 
 BULK_FROM = 5.0          # d_eq above the floor (Descantes sec. 3.2.2)
 BELOW_SURFACE = 2.0      # d_eq: the top of the bulk band under the free surface
+TREND_FROM = 10.0        # T_inertia after the tilt: the kinetic energy's trend is fitted from there on
+PINACOID_VOLUME = 0.5 ** 1.5 / 6 * (3 - 1 / np.tan(np.pi / 3))   # d_sph^3, the input's V
 
 
 def last_block(path):
@@ -29,6 +43,17 @@ def last_block(path):
     a = np.atleast_2d(np.loadtxt(path, comments="#"))
     a = a[a[:, 0] == a[-1, 0]]
     return {n: a[:, k] for k, n in enumerate(names)}
+
+
+def nfreq_of(path):
+    """Nfreq of a fix ave/profile file, from its header ("... written every N"), or None."""
+    with open(path) as f:
+        for line in f:
+            if not line.startswith("#"):
+                break
+            if "written every" in line:
+                return int(line.split("written every")[1].split()[0])
+    return None
 
 
 def series(path):
@@ -87,27 +112,79 @@ def run(prefix):
                surface=surface, base=base, t=(ts["time"] - ts["time"][0]) / np.sqrt(deq), ke=ts["c_ke"],
                bagnold=(v0, a, r2), maxov=float(ts["maxov"].max()))
     out["szz_kin"] = szz_kin
-    out.update(balance=w(szz_kin / out["weight"]), phi_b=w(phi), z_b=w(p["ztot"]), I_b=w(p["I"]), mu_b=w(mu), v_max=float(np.nanmax(vy)),
+    # kinetic energy per flowing particle in rho V g d_eq (V the mean pinacoid's volume, 0.1428 d_sph^3)
+    out["ke_per"] = ts["c_ke"] / (s["N"] * PINACOID_VOLUME * deq)
+    out.update(balance=w(szz_kin / out["weight"]), phi_b=w(phi), z_b=w(p["ztot"]), I_b=w(p["I"]), mu_b=w(mu),
+               v_max=float(np.nanmax(vy)),
                zs_b=w(p["zs"]), zd_b=w(p["zd"]), zt_b=w(p["zt"]))
+    # spin against -gamma_dot/2 in the bulk (Fig. 13b): the ratio of the band's means
+    out["spin_ratio"] = w(out["wx"]) / w(out["half_gdot"])
     # steadiness: the kinetic energy over the averaging window against the window before it
     t_avg = s["avg"] * np.sqrt(deq)
     t = ts["time"]
     last = t >= t[-1] - t_avg
     before = (t >= t[-1] - 2 * t_avg) & ~last
-    out["ke_drift"] = float(ts["c_ke"][last].mean() / ts["c_ke"][before].mean() - 1) if before.any() else np.nan
+    out["ke_drift"] = (float(ts["c_ke"][last].mean() / ts["c_ke"][before].mean() - 1) if before.any()
+                       else np.nan)
+    out["v_mean"] = float(ts["c_v[3]"][last].mean() / np.sqrt(deq))
+    out["v_end"] = float(ts["c_v[3]"][-1] / np.sqrt(deq))
+    out["v_drift"] = (float(ts["c_v[3]"][last].mean() / ts["c_v[3]"][before].mean() - 1)
+                      if before.any() and ts["c_v[3]"][before].mean() > 0 else np.nan)
+    out["maxov_last"] = float(ts["maxov"][last].max())
+    # the trend: a straight line through log(KE) from TREND_FROM T_inertia after the tilt to the end, as the
+    # change of KE per 10 T_inertia
+    late = out["t"] >= TREND_FROM
+    if late.sum() > 2 and np.all(ts["c_ke"][late] > 0):
+        slope = np.polyfit(out["t"][late], np.log(ts["c_ke"][late]), 1)[0]
+        out["ke_trend"] = float(np.exp(10 * slope) - 1)
+    else:
+        out["ke_trend"] = np.nan
+    if out["v_end"] < 0.05:
+        out["verdict"] = "arrested"
+    elif out["ke_trend"] > 0.10:
+        out["verdict"] = "accelerating"
+    elif out["ke_trend"] < -0.10:
+        out["verdict"] = "slowing"
+    else:
+        out["verdict"] = "steady"
+    # does the profiles' last block average the whole window? (blocks are written on multiples of Nfreq)
+    nfreq = nfreq_of(prefix + ".profile.dat")
+    step_end = int(ts["step"][-1])
+    step_prof = int(last_block(prefix + ".profile.dat")["step"][0])
+    dt = float((t[-1] - t[0]) / (ts["step"][-1] - ts["step"][0]))
+    window_steps = int(round(t_avg / dt))
+    covered = min(nfreq or window_steps, step_prof - (step_end - window_steps))
+    out["profile_window"] = covered / window_steps
+    if step_prof != step_end or covered < window_steps:
+        print(f"WARNING: {prefix}.profile.dat: the last block (step {step_prof}) averages {covered} of the "
+              f"window's {window_steps} steps (the run ends at step {step_end}; blocks are written on "
+              f"multiples of Nfreq = {nfreq}): the profiles are not the average of the last "
+              f"{s['avg']:g} T_inertia")
     return out
 
 
 def table(runs):
-    print("| tilt | bulk solid fraction | bulk Z | shares s/d/t % | bulk I | bulk syz/szz | tan | "
-          "v_max / sqrt(g d_eq) | Bagnold R^2 | sigma_zz / weight | KE drift over the last window |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| tilt | flow (KE per 10 T_inertia from 10 T_inertia on; over the last window) | "
+          "mean v_y / sqrt(g d_eq) | v_max / sqrt(g d_eq) | "
+          "bulk solid fraction | bulk Z | shares s/d/t % | bulk I | bulk syz/szz | tan | "
+          "w_x / (-gamma_dot/2) | Bagnold R^2 | sigma_zz (+ kinetic) / weight | largest overlap / d_sph |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in runs:
         tot = r["zs_b"] + r["zd_b"] + r["zt_b"]
         sh = "/".join(f"{100 * r[k] / tot:.0f}" for k in ("zs_b", "zd_b", "zt_b")) if tot > 0 else "-"
-        print(f"| {r['theta']:g} | {r['phi_b']:.3f} | {r['z_b']:.2f} | {sh} | {r['I_b']:.2f} | "
-              f"{r['mu_b']:.3f} | {np.tan(np.radians(r['theta'])):.3f} | {r['v_max']:.2f} | "
-              f"{r['bagnold'][2]:.3f} | {r['balance']:.3f} | {100 * r['ke_drift']:+.0f} % |")
+        print(f"| {r['theta']:g} | {r['verdict']} ({100 * r['ke_trend']:+.0f} %; "
+              f"{100 * r['ke_drift']:+.0f} %) | "
+              f"{r['v_mean']:.2f} | "
+              f"{r['v_max']:.2f} | {r['phi_b']:.3f} | {r['z_b']:.2f} | {sh} | {r['I_b']:.2f} | "
+              f"{r['mu_b']:.3f} | {np.tan(np.radians(r['theta'])):.3f} | {r['spin_ratio']:.2f} | "
+              f"{r['bagnold'][2]:.3f} | "
+              f"{r['balance']:.3f} | {r['maxov_last']:.1e} |")
+
+
+class _Skip:
+    """Stands for a panel that is not drawn."""
+    def __getattr__(self, name):
+        return lambda *args, **kw: None
 
 
 def main(argv=None):
@@ -115,6 +192,13 @@ def main(argv=None):
     ap.add_argument("prefix", nargs="+")
     ap.add_argument("-o", "--output", default="incline_profiles.png")
     ap.add_argument("--table", action="store_true")
+    ap.add_argument("--dpi", type=float, default=80)
+    ap.add_argument("--palette", type=int, default=0, metavar="N",
+                    help="save the PNG with a palette of N colours (Pillow; 64 keeps the figures of "
+                         "docs/figures small), 0: full colour")
+    ap.add_argument("--panels", choices=("all", "profiles", "bulk"), default="all",
+                    help="all ten panels, the eight profiles (Figs. 12-14, 16a, 16d) or the two others "
+                         "(kinetic energy in time, Fig. 16b-c)")
     a = ap.parse_args(argv)
     runs = sorted((run(p) for p in a.prefix), key=lambda r: r["theta"])
     if a.table:
@@ -122,8 +206,13 @@ def main(argv=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(2, 5, figsize=(22, 9))
-    ax = ax.ravel()
+    chosen = {"all": range(10), "profiles": range(8), "bulk": (8, 9)}[a.panels]
+    shape, size = {"all": ((2, 5), (22, 9)), "profiles": ((2, 4), (17.6, 9)),
+                   "bulk": ((1, 2), (11, 4.5))}[a.panels]
+    fig, axes = plt.subplots(*shape, figsize=size)
+    ax = [_Skip()] * 10
+    for k, axis in zip(chosen, axes.ravel()):
+        ax[k] = axis
     colours = plt.cm.viridis(np.linspace(0, 0.9, len(runs)))
     for r, c in zip(runs, colours):
         lab = f"{r['theta']:g}°"
@@ -146,7 +235,7 @@ def main(argv=None):
         ax[5].axvline(np.tan(np.radians(r["theta"])), color=c, ls=":")
         ax[6].plot(r["I"], z, color=c, label=lab)
         ax[7].plot(r["T"], z, color=c, label=lab)
-        ax[8].plot(r["t"], r["ke"], color=c, label=lab)
+        ax[8].plot(r["t"], r["ke_per"], color=c, label=lab)
         ax[9].plot(r["I_b"], r["z_b"], "o", color=c)
         ax[9].plot(r["I_b"], 10 * r["phi_b"], "s", color=c)
     i = np.linspace(0, 1.2, 50)
@@ -167,12 +256,15 @@ def main(argv=None):
         ax[k].set_ylim(0, top)
     ax[5].set_xlim(0, 1.5)
     ax[6].set_xlim(0, 2)
-    ax[8].set(xlabel="t / T_inertia (after the tilt)", ylabel="kinetic energy of the layer", yscale="log",
-              title="Fig. 11b")
+    ax[8].set(xlabel="t / T_inertia (after the tilt)", ylabel="kinetic energy per particle / (rho V g d_eq)",
+              yscale="log", title="Fig. 11b")
     for k in (0, 8, 9):
         ax[k].legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(a.output, dpi=80)
+    fig.savefig(a.output, dpi=a.dpi)
+    if a.palette:
+        from PIL import Image
+        Image.open(a.output).convert("RGB").quantize(colors=a.palette).save(a.output, optimize=True)
     print("wrote", a.output)
     return runs
 

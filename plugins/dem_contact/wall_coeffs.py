@@ -29,9 +29,11 @@ class WallCoefficients:
             raise DemError(f"{what}: give both kn and en (or neither, to use pair_coeff I I)")
         if frictionless(law):
             warn_frictionless(self.sim, self, what)
-        elif self.contact_law == "descantes" and law.get("mu", 0.0) > 0 and not law.get("gamma_t", 0.0) > 0:
-            self.sim.warning(f"{what}: law descantes has no tangential spring: with gamma_t = 0 the "
-                             f"tangential force is zero whatever mu and ks are (give gamma_t for friction)")
+        elif (self.contact_law == "descantes" and law.get("mu", 0.0) > 0 and not law.get("gamma_t", 0.0) > 0
+              and not law.get("beta_t", 0.0) > 0):
+            self.sim.warning(f"{what}: law descantes has no tangential spring: with gamma_t = beta_t = 0 the "
+                             f"tangential force is zero whatever mu and ks are (give gamma_t or beta_t for "
+                             f"friction)")
         self.law = law
 
     def init_table(self, nwalls):

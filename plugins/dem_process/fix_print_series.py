@@ -73,7 +73,7 @@ class FixPrintSeries(Fix):
                 self.fh.write("# step time " + " ".join(words) + "\n")
                 self.fh.flush()
 
-    def setup(self):
+    def setup_output(self):          # after the run's first force evaluation: the values thermo prints
         step = self.sim.update.ntimestep
         if step % self.every == 0 and step != self.last_step:
             self.write(step)
