@@ -10,6 +10,7 @@ below any geometric error worth catching (the smallest dimension checked is a 6 
 import importlib.util
 import math
 import struct
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -21,9 +22,17 @@ from dem_walls.mesh import Mesh, load, read_triangles, rotation_about, weld
 ROOT = Path(__file__).resolve().parents[1]
 spec = importlib.util.spec_from_file_location("make_meshes", ROOT / "tools" / "make_meshes.py")
 make_meshes = importlib.util.module_from_spec(spec)
+PATH_BEFORE = list(sys.path)
 spec.loader.exec_module(make_meshes)
+PATH_AFTER = list(sys.path)
 
 GEOMETRY_TOL = 1e-6     # m, on meshes read from float32 files (see the module docstring)
+
+
+def test_make_meshes_leaves_sys_path_alone():
+    """With dem installed the tool imports the installed plugins: putting the source tree's plugins/ first
+    on sys.path made every later import of a plugin find sources without their compiled kernels."""
+    assert PATH_AFTER == PATH_BEFORE
 
 
 def cube_soup(size=1.0):

@@ -45,9 +45,11 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path[:0] = [p for p in (str(ROOT), str(ROOT / "plugins")) if p not in sys.path]
-
-from dem_walls.mesh import rotation_about, weld  # noqa: E402
+try:                           # the installed plugins (the source tree's hold no compiled kernels)
+    from dem_walls.mesh import rotation_about, weld
+except ImportError:            # not installed: the source tree's pure-Python module
+    sys.path[:0] = [p for p in (str(ROOT), str(ROOT / "plugins")) if p not in sys.path]
+    from dem_walls.mesh import rotation_about, weld
 
 ORIFICES = (0.015, 0.018, 0.021, 0.024, 0.027, 0.030)   # the Beverloo study (m)
 
