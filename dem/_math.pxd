@@ -20,6 +20,20 @@ cdef inline void sub3(const double* a, const double* b, double* out) noexcept no
     out[2] = a[2] - b[2]
 
 
+cdef inline void mat_vec(const double* M, const double* v, double* out) noexcept nogil:
+    """out = M v, M row-major 3x3."""
+    out[0] = M[0] * v[0] + M[1] * v[1] + M[2] * v[2]
+    out[1] = M[3] * v[0] + M[4] * v[1] + M[5] * v[2]
+    out[2] = M[6] * v[0] + M[7] * v[1] + M[8] * v[2]
+
+
+cdef inline void mat_tvec(const double* M, const double* v, double* out) noexcept nogil:
+    """out = M^T v, M row-major 3x3."""
+    out[0] = M[0] * v[0] + M[3] * v[1] + M[6] * v[2]
+    out[1] = M[1] * v[0] + M[4] * v[1] + M[7] * v[2]
+    out[2] = M[2] * v[0] + M[5] * v[1] + M[8] * v[2]
+
+
 cdef inline double det3(const double* a, const double* b, const double* c) noexcept nogil:
     """a . (b x c)"""
     return (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])

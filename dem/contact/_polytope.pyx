@@ -48,6 +48,7 @@ input gives the same bits. All points share the maximum overlap (Descantes' law,
 import numpy as np
 from libc.math cimport sqrt, fabs, INFINITY
 
+from dem._math cimport mat_vec, mat_tvec
 from dem.shapes._support cimport quat_to_rot
 from dem.shapes._table cimport topology_pointers
 
@@ -85,20 +86,6 @@ cdef inline void _cross(const double* a, const double* b, double* o) noexcept no
     o[2] = a[0] * b[1] - a[1] * b[0]
 
 
-cdef inline void _mul(const double* M, const double* v, double* o) noexcept nogil:
-    """o = M v (row-major 3x3)."""
-    o[0] = M[0] * v[0] + M[1] * v[1] + M[2] * v[2]
-    o[1] = M[3] * v[0] + M[4] * v[1] + M[5] * v[2]
-    o[2] = M[6] * v[0] + M[7] * v[1] + M[8] * v[2]
-
-
-cdef inline void _tmul(const double* M, const double* v, double* o) noexcept nogil:
-    """o = M^T v."""
-    o[0] = M[0] * v[0] + M[3] * v[1] + M[6] * v[2]
-    o[1] = M[1] * v[0] + M[4] * v[1] + M[7] * v[2]
-    o[2] = M[2] * v[0] + M[5] * v[1] + M[8] * v[2]
-
-
 cdef struct Frame:         # B seen in A's rotated frame centred on A: point of B = t + sb M v
     double M[9]            # Ra^T Rb
     double t[3]            # Ra^T (xb - xa)
@@ -115,7 +102,7 @@ cdef inline void _frame(const Polytope* A, const double* Ra, double sa, const do
         for j in range(3):
             F.M[3 * i + j] = Ra[i] * Rb[j] + Ra[3 + i] * Rb[3 + j] + Ra[6 + i] * Rb[6 + j]
         d[i] = xb[i] - xa[i]
-    _tmul(Ra, d, F.t)
+    mat_tvec(Ra, d, F.t)
     F.sa = sa
     F.sb = sb
     F.L = sa * A.radius + sb * B.radius
@@ -140,7 +127,7 @@ cdef inline double _hB(const Polytope* B, const Frame* F, const double* w) noexc
     cdef double best = -INFINITY, s
     cdef const double* v
     cdef int k
-    _tmul(F.M, w, wb)
+    mat_tvec(F.M, w, wb)
     for k in range(B.nv):
         v = B.verts + 3 * k
         s = wb[0] * v[0] + wb[1] * v[1] + wb[2] * v[2]
@@ -151,7 +138,7 @@ cdef inline double _hB(const Polytope* B, const Frame* F, const double* w) noexc
 
 cdef inline void _b_point(const Polytope* B, const Frame* F, int k, double* o) noexcept nogil:
     """Vertex k of B in A's frame."""
-    _mul(F.M, B.verts + 3 * k, o)
+    mat_vec(F.M, B.verts + 3 * k, o)
     o[0] = F.t[0] + F.sb * o[0]
     o[1] = F.t[1] + F.sb * o[1]
     o[2] = F.t[2] + F.sb * o[2]
@@ -271,7 +258,7 @@ cdef int _sat_box(const Polytope* A, const Polytope* B, const Frame* F, double* 
         out.axis, out.depth = AXIS_EDGE, bestE
         u_out[0], u_out[1], u_out[2] = uE[0], uE[1], uE[2]
         out.fa = _box_edge(A, ea, uE)
-        _tmul(M, uE, w)
+        mat_tvec(M, uE, w)
         w[0], w[1], w[2] = -w[0], -w[1], -w[2]
         out.fb = _box_edge(B, eb, w)
     return 1 if out.depth > 0.0 else 0
@@ -322,7 +309,7 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
             uA[2] = a[2]
     # faces of B: m = M n_g (outward of B, in A's frame), u = -m, h_B(-u) = m.t + sb d_g
     for g in range(B.nf):
-        _mul(F.M, B.fnormal + 3 * g, m)
+        mat_vec(F.M, B.fnormal + 3 * g, m)
         w[0] = -m[0]
         w[1] = -m[1]
         w[2] = -m[2]
@@ -367,8 +354,8 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
         pb = _dot(sw, qb1)
         if (pa if pa < pb else pb) > hwB + slab:
             continue
-        _mul(F.M, B.fnormal + 3 * B.efaces[2 * j], c)
-        _mul(F.M, B.fnormal + 3 * B.efaces[2 * j + 1], dd)
+        mat_vec(F.M, B.fnormal + 3 * B.efaces[2 * j], c)
+        mat_vec(F.M, B.fnormal + 3 * B.efaces[2 * j + 1], dd)
         for i in range(3):
             c[i] = -c[i]
             dd[i] = -dd[i]
@@ -452,7 +439,7 @@ cdef int sat_penetration(const Polytope* A, const double* Ra, double sa, const d
     cdef int hit
     _frame(A, Ra, sa, xa, B, Rb, sb, xb, &F)
     hit = _sat_frame(A, B, &F, u, out)
-    _mul(Ra, u, out.n)
+    mat_vec(Ra, u, out.n)
     out.n[0] = -out.n[0]
     out.n[1] = -out.n[1]
     out.n[2] = -out.n[2]
@@ -750,9 +737,9 @@ cdef int _contact_frame(const Polytope* A, const Polytope* B, const Frame* F, co
     _cross(u, t1, t2)
     # support values of every vertex along u (A) and -u (B), then the vertices within ftol of the extreme;
     # B is read in its own frame (directions rotated once by M^T) rather than posed vertex by vertex
-    _tmul(F.M, u, ub)
-    _tmul(F.M, t1, t1b)
-    _tmul(F.M, t2, t2b)
+    mat_tvec(F.M, u, ub)
+    mat_tvec(F.M, t1, t1b)
+    mat_tvec(F.M, t2, t2b)
     for k in range(A.nv):
         s = F.sa * _dot(u, A.verts + 3 * k)
         if k < SUPPORT_BUF:
@@ -857,7 +844,7 @@ cdef int _points_world(const Polytope* A, const Polytope* B, const Frame* F, con
     for k in range(n):
         for i in range(3):
             p[i] = pts[2 * k] * t1[i] + pts[2 * k + 1] * t2[i] + c * u[i]
-        _mul(Ra, p, out.p + 3 * k)
+        mat_vec(Ra, p, out.p + 3 * k)
         for i in range(3):
             out.p[3 * k + i] += xa[i]
     return n
@@ -881,7 +868,7 @@ cdef int contact_points(const Polytope* A, const double* Ra, double sa, const do
         return 0
     _frame(A, Ra, sa, xa, B, Rb, sb, xb, &F)
     nw[0], nw[1], nw[2] = -sat.n[0], -sat.n[1], -sat.n[2]
-    _tmul(Ra, nw, u)
+    mat_tvec(Ra, nw, u)
     return _points_world(A, B, &F, Ra, xa, u, sat.depth, ftol, out)
 
 
@@ -894,7 +881,7 @@ cdef int polytope_contact(const Polytope* A, const double* Ra, double sa, const 
     cdef double u[3]
     _frame(A, Ra, sa, xa, B, Rb, sb, xb, &F)
     if not _sat_frame(A, B, &F, u, sat):
-        _mul(Ra, u, sat.n)
+        mat_vec(Ra, u, sat.n)
         sat.n[0], sat.n[1], sat.n[2] = -sat.n[0], -sat.n[1], -sat.n[2]
         out.depth = sat.depth
         out.n[0], out.n[1], out.n[2] = sat.n[0], sat.n[1], sat.n[2]
@@ -902,7 +889,7 @@ cdef int polytope_contact(const Polytope* A, const double* Ra, double sa, const 
         out.npoints = 0
         out.nfa = out.nfb = 0
         return 0
-    _mul(Ra, u, sat.n)
+    mat_vec(Ra, u, sat.n)
     sat.n[0], sat.n[1], sat.n[2] = -sat.n[0], -sat.n[1], -sat.n[2]
     out.depth = sat.depth
     out.n[0], out.n[1], out.n[2] = sat.n[0], sat.n[1], sat.n[2]

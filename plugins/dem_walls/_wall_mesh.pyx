@@ -31,6 +31,7 @@ from libc.float cimport DBL_MIN
 from libc.math cimport sqrt, floor, fabs
 from libc.stdlib cimport malloc, realloc, free
 cimport numpy as cnp
+from dem._math cimport dot3, mat_vec, mat_tvec
 from dem._particles cimport ParticleView, Particles
 from dem.contact.record cimport Contact
 from dem.contact._gjk cimport gjk_distance, epa_penetration, Simplex, GJK_SEPARATED
@@ -172,22 +173,6 @@ cdef inline int _cell(double x, double lo, double h, int n) noexcept nogil:
     return <int>f
 
 
-cdef inline double _dot(const double* a, const double* b) noexcept nogil:
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-cdef inline void _matvec(const double* M, const double* a, double* out) noexcept nogil:
-    out[0] = M[0] * a[0] + M[1] * a[1] + M[2] * a[2]
-    out[1] = M[3] * a[0] + M[4] * a[1] + M[5] * a[2]
-    out[2] = M[6] * a[0] + M[7] * a[1] + M[8] * a[2]
-
-
-cdef inline void _tmatvec(const double* M, const double* a, double* out) noexcept nogil:
-    out[0] = M[0] * a[0] + M[3] * a[1] + M[6] * a[2]
-    out[1] = M[1] * a[0] + M[4] * a[1] + M[7] * a[2]
-    out[2] = M[2] * a[0] + M[5] * a[1] + M[8] * a[2]
-
-
 cdef void _closest(const double* a, const double* b, const double* c, const double* p, double* q,
                    int* fkind, int* fidx) noexcept nogil:
     """Closest point q of the triangle (a, b, c) to p and its feature: the face, edge k (from vertex k to
@@ -203,8 +188,8 @@ cdef void _closest(const double* a, const double* b, const double* c, const doub
         ab[k] = b[k] - a[k]
         ac[k] = c[k] - a[k]
         ap[k] = p[k] - a[k]
-    d1 = _dot(ab, ap)
-    d2 = _dot(ac, ap)
+    d1 = dot3(ab, ap)
+    d2 = dot3(ac, ap)
     if d1 <= 0.0 and d2 <= 0.0:
         fkind[0], fidx[0] = F_VERTEX, 0
         for k in range(3):
@@ -212,8 +197,8 @@ cdef void _closest(const double* a, const double* b, const double* c, const doub
         return
     for k in range(3):
         bp[k] = p[k] - b[k]
-    d3 = _dot(ab, bp)
-    d4 = _dot(ac, bp)
+    d3 = dot3(ab, bp)
+    d4 = dot3(ac, bp)
     if d3 >= 0.0 and d4 <= d3:
         fkind[0], fidx[0] = F_VERTEX, 1
         for k in range(3):
@@ -228,8 +213,8 @@ cdef void _closest(const double* a, const double* b, const double* c, const doub
         return
     for k in range(3):
         cp[k] = p[k] - c[k]
-    d5 = _dot(ab, cp)
-    d6 = _dot(ac, cp)
+    d5 = dot3(ab, cp)
+    d6 = dot3(ac, cp)
     if d6 >= 0.0 and d5 <= d6:
         fkind[0], fidx[0] = F_VERTEX, 2
         for k in range(3):
@@ -271,11 +256,11 @@ cdef void _feature_of(const double* a, const double* b, const double* c, const d
         ab[k] = b[k] - a[k]
         ac[k] = c[k] - a[k]
         ap[k] = p[k] - a[k]
-    d00 = _dot(ab, ab)
-    d01 = _dot(ab, ac)
-    d11 = _dot(ac, ac)
-    d20 = _dot(ap, ab)
-    d21 = _dot(ap, ac)
+    d00 = dot3(ab, ab)
+    d01 = dot3(ab, ac)
+    d11 = dot3(ac, ac)
+    d20 = dot3(ap, ab)
+    d21 = dot3(ap, ac)
     den = d00 * d11 - d01 * d01
     lam[1] = (d11 * d20 - d01 * d21) / den
     lam[2] = (d00 * d21 - d01 * d20) / den
@@ -333,7 +318,7 @@ cdef int _shaped_hit(const ShapeRef* S, const double* R, const double* x, const 
     T.params = ZERO_PARAMS
     T.verts = verts
     T.corners = NULL
-    side = 1.0 if _dot(tn, v) >= 0.0 else -1.0
+    side = 1.0 if dot3(tn, v) >= 0.0 else -1.0
     # any positive lower bound of the distance proves them apart (sep: the smallest positive double)
     if gjk_distance(S, R, x, &T, IDENTITY, ORIGIN, 1e-10, DBL_MIN, v, &sx, False, pa, pb) == GJK_SEPARATED:
         return 0
@@ -345,7 +330,7 @@ cdef int _shaped_hit(const ShapeRef* S, const double* R, const double* x, const 
         support_world(S, R, x, q, pa)
         for k in range(3):
             q[k] = a[k] - pa[k]
-        depth = _dot(n, q)
+        depth = dot3(n, q)
         if not depth > 0.0:
             return 0
         for k in range(3):
@@ -382,7 +367,7 @@ cdef int _vertices_beyond(const ShapeRef* S, const double* R, const double* x, c
         k += 1
         for d in range(3):
             y[d] = v0[d] - q[d]
-        depth[0] = _dot(n, y)
+        depth[0] = dot3(n, y)
         if depth[0] + tol > 0.0:
             return k
     return -1
@@ -462,7 +447,7 @@ def mesh_walls(ParticleView view, int groupbit, MeshIndex mesh, const double[::1
             npc = 1 if sphere else ncomponents(Tb, s)
             for d in range(3):                 # the centre in the mesh's reference frame
                 y[d] = P.x[3 * i + d] - centre[d]
-            _tmatvec(M, y, xr)
+            mat_tvec(M, y, xr)
             nh = 0
             posed = False
             for d in range(3):
@@ -487,17 +472,17 @@ def mesh_walls(ParticleView view, int groupbit, MeshIndex mesh, const double[::1
                             stamp[t] = token + i
                             for d in range(3):
                                 y[d] = xr[d] - balls[t, d]
-                            if _dot(y, y) >= (r + balls[t, 3]) * (r + balls[t, 3]):   # misses the triangle's ball
+                            if dot3(y, y) >= (r + balls[t, 3]) * (r + balls[t, 3]):   # misses the triangle's ball
                                 continue
                             if sphere:
                                 for d in range(3):
                                     y[d] = xr[d] - V[tris[t, 0], d]
-                                if fabs(_dot(y, &nrm[t, 0])) >= r:     # the sphere misses the plane
+                                if fabs(dot3(y, &nrm[t, 0])) >= r:     # the sphere misses the plane
                                     continue
                                 _closest(&V[tris[t, 0], 0], &V[tris[t, 1], 0], &V[tris[t, 2], 0], xr, q, &fk, &fi)
                                 for d in range(3):
                                     y[d] = xr[d] - q[d]
-                                dist = sqrt(_dot(y, y))
+                                dist = sqrt(dot3(y, y))
                                 if dist >= r or dist == 0.0 or _room(&hits, &cap, nh) < 0:
                                     continue
                                 hits[nh].tri, hits[nh].piece, hits[nh].npts, hits[nh].fkind = t, 0, 1, fk
@@ -523,14 +508,14 @@ def mesh_walls(ParticleView view, int groupbit, MeshIndex mesh, const double[::1
                                 rc = Tb.radius[row] * sc
                                 for d in range(3):
                                     y[d] = xc[d] - V[tris[t, 0], d]
-                                dn = _dot(y, &nrm[t, 0])
+                                dn = dot3(y, &nrm[t, 0])
                                 if dn >= rc or dn <= -rc or _room(&hits, &cap, nh) < 0:
                                     continue                # the piece's sphere misses the plane
                                 if S.kind == SPHERE:        # a sphere component: as a sphere, exactly
                                     _closest(&V[tris[t, 0], 0], &V[tris[t, 1], 0], &V[tris[t, 2], 0], xc, q, &fk, &fi)
                                     for d in range(3):
                                         y[d] = xc[d] - q[d]
-                                    dist = sqrt(_dot(y, y))
+                                    dist = sqrt(dot3(y, y))
                                     if dist >= rc or dist == 0.0:
                                         continue
                                     hits[nh].tri, hits[nh].piece, hits[nh].npts, hits[nh].fkind = t, c, 1, fk
@@ -574,7 +559,7 @@ def mesh_walls(ParticleView view, int groupbit, MeshIndex mesh, const double[::1
                         continue
                     for d in range(3):
                         y[d] = hits[j].p[d] - hits[m].p[d]
-                    if _dot(y, y) <= tol * tol or (not sphere and _dot(&nrm[hits[m].tri, 0], &nrm[hits[j].tri, 0]) > 1.0 - 1e-9):
+                    if dot3(y, y) <= tol * tol or (not sphere and dot3(&nrm[hits[m].tri, 0], &nrm[hits[j].tri, 0]) > 1.0 - 1e-9):
                         hits[j].keep = False
                         break
             nkeep = 0
@@ -608,7 +593,7 @@ def mesh_walls(ParticleView view, int groupbit, MeshIndex mesh, const double[::1
                     for k in range(NSLOT):
                         sl = &hist[i, SLOT * k]
                         if sl[0] == hits[j].piece + 1 and not used[k]:
-                            dn = _dot(&sl[1], hits[j].n)
+                            dn = dot3(&sl[1], hits[j].n)
                             if dn > bestdot:
                                 best, bestdot = k, dn
                     if best < 0 and advance:
@@ -674,7 +659,7 @@ cdef void _apply_hit(const Hit* hit, int i, int s, bint sphere, const Particles*
             weight /= nkeep
         else:                # Model A: each a full contact, damped with m_i / N_c (Part III eq. 18)
             m /= nkeep
-    _matvec(M, hit.n, con.n)
+    mat_vec(M, hit.n, con.n)
     con.delta = hit.delta
     con.central = sphere
     con.key = 0
@@ -702,7 +687,7 @@ cdef void _apply_hit(const Hit* hit, int i, int s, bint sphere, const Particles*
                 pr[d] = hit.p[d]
         for d in range(3):   # the point in the world frame and its lever from the turning point
             y[d] = pr[d] - C0[d]
-        _matvec(M, y, lw)
+        mat_vec(M, y, lw)
         for d in range(3):
             con.p[d] = lw[d] + centre[d]
         vw[0] = pose[POSE_V] + pose[POSE_W + 1] * lw[2] - pose[POSE_W + 2] * lw[1]

@@ -3,12 +3,11 @@ import math
 
 import numpy as np
 
-import dem_contact
 from dem.args import Args
 from dem.errors import DemError, did_you_mean
 from dem.fix import Fix, Stage
 
-from .wall_fix import POINT_MODES, WallFix, cylinder, law_name, plane, turning
+from .wall_fix import WALL_KEYWORDS, WallFix, cylinder, plane, turning, wall_keyword
 
 RPM = 2.0 * math.pi / 60.0
 
@@ -109,20 +108,11 @@ class FixWallDrum(WallFix, Fix):
             elif key == "carry":
                 self.carry = (a[i + 1], sim.groups.bit(a[i + 1]))
                 i += 2
-            elif key == "point":
-                if a[i + 1] not in POINT_MODES:
-                    raise a.error(f"point must be {', '.join(POINT_MODES)}, got '{a[i + 1]}'")
-                self.point = POINT_MODES.index(a[i + 1])
-                i += 2
-            elif key == "law":
-                self.contact_law = law_name(a[i + 1], f"fix {fid} wall/drum")
-                i += 2
-            elif key in dem_contact.KEYWORDS:
-                law += a.words[i:i + 2]
-                i += 2
             else:
-                known = ["rpm", "omega", "ramp", "ends", "carry", "point", "law"] + list(dem_contact.KEYWORDS)
-                raise a.error(f"unknown keyword '{key}'{did_you_mean(key, known)}")
+                i = wall_keyword(self, a, i, law)
+                if i is None:
+                    known = ["rpm", "omega", "ramp", "ends", "carry"] + WALL_KEYWORDS
+                    raise a.error(f"unknown keyword '{key}'{did_you_mean(key, known)}")
         self.parse_law(law)
         self.nwalls = 1 + (2 if self.ends else 0)
         self.angle = 0.0          # drum angle (rad), integrated exactly for the linear ramp

@@ -3,17 +3,16 @@ import math
 
 import numpy as np
 
-import dem_contact
 from dem import shape_command
 from dem._particles import ParticleView
 from dem.args import Args
-from dem.errors import DemError, did_you_mean
+from dem.errors import did_you_mean
 from dem.fix import Fix, Stage
 
 from . import _wall_mesh
 from .mesh import load, read_motion, rotation_about
 from ._walls import LAWS as LAW_CODES
-from .wall_fix import POINT_MODES, law_name
+from .wall_fix import POINT_MODES, WALL_KEYWORDS, wall_keyword
 from dem_contact.wall_coeffs import WallCoefficients
 
 RPM = 2.0 * math.pi / 60.0
@@ -143,21 +142,11 @@ class FixWallMesh(WallCoefficients, Fix):
             elif key == "ramp":
                 self.ramp = a.float(i + 1, "ramp", nonneg=True)
                 i += 2
-            elif key == "point":
-                if a[i + 1] not in ("deepest", "multipoint"):
-                    raise a.error(f"point must be deepest or multipoint, got '{a[i + 1]}'")
-                self.point = POINT_MODES.index(a[i + 1])
-                i += 2
-            elif key == "law":
-                self.contact_law = law_name(a[i + 1], f"fix {fid} wall/mesh")
-                i += 2
-            elif key in dem_contact.KEYWORDS:
-                law += a.words[i:i + 2]
-                i += 2
             else:
-                known = ["scale", "rotate", "move", "linear", "turn", "ramp", "table", "point", "law"] + \
-                    list(dem_contact.KEYWORDS)
-                raise a.error(f"unknown keyword '{key}'{did_you_mean(key, known)}")
+                i = wall_keyword(self, a, i, law, modes=("deepest", "multipoint"))
+                if i is None:
+                    known = ["scale", "rotate", "move", "linear", "turn", "ramp", "table"] + WALL_KEYWORDS
+                    raise a.error(f"unknown keyword '{key}'{did_you_mean(key, known)}")
         if self.motion_table is not None and (np.any(self.velocity) or self.omega_target != 0.0 or self.ramp):
             raise a.error("table gives the motion: it cannot be combined with linear, turn or ramp")
         self.mesh = mesh

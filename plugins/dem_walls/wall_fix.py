@@ -2,6 +2,8 @@
 and the call of the wall kernel on the fix's surfaces table."""
 import numpy as np
 
+import dem_contact
+
 from dem import shape_command
 from dem._particles import ParticleView
 from dem.errors import DemError
@@ -43,6 +45,27 @@ def law_name(word, what):
     if word not in LAWS:
         raise DemError(f"{what}: law must be {' or '.join(LAWS)}, got '{word}'")
     return word
+
+
+def wall_keyword(fix, a, i, law, modes=POINT_MODES):
+    """The keywords every wall fix takes, at a[i] (dem.args.Args): `point MODE` (one of modes) sets
+    fix.point, `law NAME` fix.contact_law, a coefficient of the law is added to the list `law`. Returns the
+    index after it, or None for another keyword."""
+    key = a[i]
+    if key == "point":
+        if a[i + 1] not in modes:
+            raise a.error(f"point must be {', '.join(modes)}, got '{a[i + 1]}'")
+        fix.point = POINT_MODES.index(a[i + 1])
+    elif key == "law":
+        fix.contact_law = law_name(a[i + 1], f"fix {fix.id} {fix.style}")
+    elif key in dem_contact.KEYWORDS:
+        law += a.words[i:i + 2]
+    else:
+        return None
+    return i + 2
+
+
+WALL_KEYWORDS = ["point", "law"] + list(dem_contact.KEYWORDS)   # for did_you_mean
 
 
 class WallFix(WallCoefficients):
