@@ -1,8 +1,8 @@
 # cython: language_level=3
 """The particle arrays as kernels see them: one struct of pointers (Particles) into the atom store,
 rebuilt at every kernel call (arrays grow and move: never kept across calls). Row i of a 3-vector field
-is x[3 i:3 i + 3]; ghosts follow the owned rows. `stress` (9 per row) and `ctypes` (5 per row) are the
-contact tallies of dem/tally.py, NULL unless an analysis style asked for them."""
+is x[3 i:3 i + 3]; ghosts follow the owned rows. `stress` (9 per row), `ctypes` (5 per row) and `ccount`
+(1 per row) are the contact tallies of dem/tally.py, NULL unless an analysis style asked for them."""
 
 cdef struct Particles:
     int nlocal
@@ -20,6 +20,7 @@ cdef struct Particles:
     const int* mask
     double* stress
     double* ctypes
+    double* ccount
 
 
 cdef class ParticleView:

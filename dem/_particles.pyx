@@ -28,10 +28,14 @@ cdef class ParticleView:
         self.p.mask = &mask[0]
         self.p.stress = NULL
         self.p.ctypes = NULL
+        self.p.ccount = NULL
         if "tally_stress" in d:
             tally = d["tally_stress"]
             self.p.stress = &tally[0, 0]
         if "tally_types" in d:
             tally = d["tally_types"]
             self.p.ctypes = &tally[0, 0]
-        self._keep = self._keep + tuple(d[k] for k in ("tally_stress", "tally_types") if k in d)
+        if "tally_count" in d:
+            tally = d["tally_count"]
+            self.p.ccount = &tally[0, 0]
+        self._keep = self._keep + tuple(d[k] for k in ("tally_stress", "tally_types", "tally_count") if k in d)

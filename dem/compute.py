@@ -30,7 +30,7 @@ class Compute:
     has_scalar = True
     size_vector = 0
     vector_names = ()
-    tallies = ()          # per-particle contact tallies read (dem/tally.py: "stress", "types")
+    tallies = ()          # per-particle contact tallies read (dem/tally.py: "stress", "types", "count")
     coords = None         # the coordinate of each vector element where it has one (rdf: r), else None
 
     def __init__(self, sim, cid, group, args):

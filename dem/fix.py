@@ -31,7 +31,7 @@ class Fix:
     style = None
     stages = Stage(0)
     time_integrate = False
-    tallies = ()          # per-particle contact tallies read (dem/tally.py: "stress", "types")
+    tallies = ()          # per-particle contact tallies read (dem/tally.py: "stress", "types", "count")
     acceleration = None   # a uniform body acceleration (gravity) it applies: the MPI grid leaves its axis whole
 
     def __init__(self, sim, fid, group, args):

@@ -525,6 +525,10 @@ def test_main_drum_input_runs(tmp_path, monkeypatch, shape, n):
         assert (tmp_path / name).stat().st_size > 0, name
     assert (tmp_path / "drum_0.png").read_bytes() != (tmp_path / "drum_final.png").read_bytes()
     sim.close()
+    # the sweep's analysis reads the series and the dump (with the crosses' surfaces in it)
+    from dem.tools import drum_analysis
+    drum_analysis.main(["--rpm", "40", "--series", "drum.dat", "--h5", "drum.h5", "-o", "a"])
+    assert (tmp_path / "a_regimes.png").stat().st_size > 0
 
 
 def test_main_drum_input_refuses_an_unknown_shape(tmp_path, monkeypatch):

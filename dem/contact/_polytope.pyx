@@ -145,18 +145,27 @@ cdef inline void _b_point(const Polytope* B, const Frame* F, int k, double* o) n
 
 
 # ---------------------------------------------------------------- penetration
+cdef int BOX_EDGE[24]               # edge id of box_topology for corner c (bit i clear) and axis i: [3 c + i]
+
+
+def _box_edges():
+    from dem.shapes.topology import box_topology
+    for e, (v0, v1) in enumerate(box_topology([1.0, 1.0, 1.0]).edges):
+        d = int(v0) ^ int(v1)
+        BOX_EDGE[3 * (int(v0) & ~d) + d.bit_length() - 1] = e
+
+
+_box_edges()
+
+
 cdef inline int _box_edge(const Polytope* P, int i, const double* w) noexcept nogil:
     """The edge of box P along its axis i that supports direction w (P's frame): its end corners differ in
     bit i and share bit k = (w_k > 0) for the other axes (box_corners order)."""
-    cdef int k, c = 0, e
+    cdef int k, c = 0
     for k in range(3):
         if k != i and w[k] > 0.0:
             c |= 1 << k
-    for e in range(P.ne):
-        if (P.edges[2 * e] == c and P.edges[2 * e + 1] == c | (1 << i)) or (
-                P.edges[2 * e + 1] == c and P.edges[2 * e] == c | (1 << i)):
-            return e
-    return -1
+    return BOX_EDGE[3 * c + i]
 
 
 cdef int _sat_box(const Polytope* A, const Polytope* B, const Frame* F, double* u_out, SatResult* out) noexcept nogil:
@@ -222,13 +231,13 @@ cdef int _sat_box(const Polytope* A, const Polytope* B, const Frame* F, double* 
         for i in range(3):
             i1 = i + 1 if i < 2 else 0
             i2 = i1 + 1 if i1 < 2 else 0
-            l2 = M[3 * i1 + j] * M[3 * i1 + j] + M[3 * i2 + j] * M[3 * i2 + j]
-            if l2 <= SAT_PARALLEL * SAT_PARALLEL:
-                continue
             tu = t[i2] * M[3 * i1 + j] - t[i1] * M[3 * i2 + j]
             d = a[i1] * Ab[3 * i2 + j] + a[i2] * Ab[3 * i1 + j] + b[j1] * Ab[3 * i + j2] + b[j2] * Ab[3 * i + j1] - fabs(tu)
             if d >= 0.0 and (d >= bestE or d >= lim):
                 continue               # |u| <= 1: d / |u| >= d cannot win (nor tie within the family)
+            l2 = M[3 * i1 + j] * M[3 * i1 + j] + M[3 * i2 + j] * M[3 * i2 + j]
+            if l2 <= SAT_PARALLEL * SAT_PARALLEL:
+                continue
             inv = 1.0 / sqrt(l2)
             d *= inv
             if d < 0.0 or d < bestE - tie:
@@ -701,6 +710,77 @@ cdef int _canonical(double* P, int n) noexcept nogil:
     return m
 
 
+cdef inline void _corner(const double* half, int c, double* o) noexcept nogil:
+    """Corner c of a box (bit k set: +half_k; box_topology's order)."""
+    o[0] = half[0] if c & 1 else -half[0]
+    o[1] = half[1] if c & 2 else -half[1]
+    o[2] = half[2] if c & 4 else -half[2]
+
+
+cdef inline int _box_feature(const double* half, double s, const double* w, double ftol, int* c) noexcept nogil:
+    """The corners of the box (half sides s half) within ftol of its support along w (box frame), as the
+    general vertex loop selects them, in cyclic order: 1 (corner), 2 (edge) or 4 (face) corners. A corner
+    falls short of the support by 2 s half_k |w_k| for each bit k it does not share with the supporting
+    corner. Returns 0 for any other set (3 corners, or more than a face: a box thinner than ftol), which
+    the general loop then takes."""
+    cdef double d[3]
+    cdef int k, c0 = 0, nfree = 0, a = -1, b = -1
+    for k in range(3):
+        if w[k] > 0.0:
+            c0 |= 1 << k
+        d[k] = 2.0 * s * half[k] * fabs(w[k])
+        if d[k] <= ftol:
+            nfree += 1
+            if a < 0:
+                a = k
+            else:
+                b = k
+    c[0] = c0
+    if nfree == 0:
+        return 1
+    if nfree == 1:
+        c[1] = c0 ^ (1 << a)
+        return 2
+    if nfree == 2 and d[a] + d[b] <= ftol:
+        c[1] = c0 ^ (1 << a)
+        c[2] = c0 ^ (1 << a) ^ (1 << b)
+        c[3] = c0 ^ (1 << b)
+        return 4
+    return 0
+
+
+cdef int _box_ring(double* P, int n, double tol) noexcept nogil:
+    """A box's feature projected on the contact plane (2 or 4 points in cyclic order) in _hull2's order:
+    two points sorted by (x, y); a quadrilateral counter-clockwise from its lowest point. A feature seen
+    edge-on (points or a corner within tol, a box thinner than tol) goes through _hull2."""
+    cdef double Q[8]
+    cdef double o
+    cdef int i, k = 0, step
+    if n == 2:
+        if fabs(P[2] - P[0]) + fabs(P[3] - P[1]) <= tol:
+            return _hull2(P, n, tol)
+        if P[2] < P[0] or (P[2] == P[0] and P[3] < P[1]):
+            Q[0], Q[1] = P[0], P[1]
+            P[0], P[1] = P[2], P[3]
+            P[2], P[3] = Q[0], Q[1]
+        return 2
+    for i in range(1, n):
+        if P[2 * i] < P[2 * k] or (P[2 * i] == P[2 * k] and P[2 * i + 1] < P[2 * k + 1]):
+            k = i
+    for i in range(n):             # each corner farther than tol from the chord of its neighbours
+        o = _orient(&P[2 * ((i + n - 1) % n)], &P[2 * i], &P[2 * ((i + 1) % n)])
+        if fabs(o) <= tol * (fabs(P[2 * ((i + 1) % n)] - P[2 * ((i + n - 1) % n)])
+                             + fabs(P[2 * ((i + 1) % n) + 1] - P[2 * ((i + n - 1) % n) + 1])):
+            return _hull2(P, n, tol)
+    step = 1 if o > 0.0 else n - 1
+    for i in range(n):
+        Q[2 * i] = P[2 * ((k + i * step) % n)]
+        Q[2 * i + 1] = P[2 * ((k + i * step) % n) + 1]
+    for i in range(2 * n):
+        P[i] = Q[i]
+    return n
+
+
 cdef int _contact_frame(const Polytope* A, const Polytope* B, const Frame* F, const double* u, double depth,
                         double ftol, double* pts, int* nfa, int* nfb, double* t1, double* t2,
                         double* cplane) noexcept nogil:
@@ -715,9 +795,11 @@ cdef int _contact_frame(const Polytope* A, const Polytope* B, const Frame* F, co
     cdef double t1b[3]
     cdef double t2b[3]
     cdef double e[3]
-    cdef double hA = -INFINITY, hB = -INFINITY, s, ln, tol = HULL_TOL * F.L
+    cdef double hA = -INFINITY, hB = -INFINITY, s, ln, tol = HULL_TOL * F.L, ut, t1t, t2t
     cdef int k, na = 0, nb = 0, n, ax
-    cdef bint crossing
+    cdef int cA[4]
+    cdef int cB[4]
+    cdef bint crossing, hullA = True, hullB = True
     cdef const double* v
     # basis of the plane: t1 from the world axis least aligned with u, t2 = u x t1 (t1, t2, u right-handed)
     ax = 0
@@ -740,36 +822,61 @@ cdef int _contact_frame(const Polytope* A, const Polytope* B, const Frame* F, co
     mat_tvec(F.M, u, ub)
     mat_tvec(F.M, t1, t1b)
     mat_tvec(F.M, t2, t2b)
-    for k in range(A.nv):
-        s = F.sa * _dot(u, A.verts + 3 * k)
-        if k < SUPPORT_BUF:
-            sA[k] = s
-        if s > hA:
-            hA = s
-    for k in range(B.nv):
-        s = -_dot(u, F.t) - F.sb * _dot(ub, B.verts + 3 * k)
-        if k < SUPPORT_BUF:
-            sB[k] = s
-        if s > hB:
-            hB = s
+    ut = _dot(u, F.t)
+    t1t = _dot(t1, F.t)
+    t2t = _dot(t2, F.t)
+    # a box finds its feature from the corner bits (_box_feature), already in order: no hull
+    if A.half != NULL:
+        hA = F.sa * (A.half[0] * fabs(u[0]) + A.half[1] * fabs(u[1]) + A.half[2] * fabs(u[2]))
+        na = _box_feature(A.half, F.sa, u, ftol, cA)
+    if na:
+        for k in range(na):
+            _corner(A.half, cA[k], e)
+            PA[2 * k] = F.sa * _dot(t1, e)
+            PA[2 * k + 1] = F.sa * _dot(t2, e)
+        hullA = False
+    else:
+        for k in range(A.nv):
+            s = F.sa * _dot(u, A.verts + 3 * k)
+            if k < SUPPORT_BUF:
+                sA[k] = s
+            if s > hA:
+                hA = s
+        for k in range(A.nv):
+            v = A.verts + 3 * k
+            s = sA[k] if k < SUPPORT_BUF else F.sa * _dot(u, v)
+            if s >= hA - ftol and na < POLY_MAXFEAT:
+                PA[2 * na] = F.sa * _dot(t1, v)
+                PA[2 * na + 1] = F.sa * _dot(t2, v)
+                na += 1
+    if B.half != NULL:
+        hB = -ut + F.sb * (B.half[0] * fabs(ub[0]) + B.half[1] * fabs(ub[1]) + B.half[2] * fabs(ub[2]))
+        e[0], e[1], e[2] = -ub[0], -ub[1], -ub[2]
+        nb = _box_feature(B.half, F.sb, e, ftol, cB)
+    if nb:
+        for k in range(nb):
+            _corner(B.half, cB[k], e)
+            PB[2 * k] = t1t + F.sb * _dot(t1b, e)
+            PB[2 * k + 1] = t2t + F.sb * _dot(t2b, e)
+        hullB = False
+    else:
+        for k in range(B.nv):
+            s = -ut - F.sb * _dot(ub, B.verts + 3 * k)
+            if k < SUPPORT_BUF:
+                sB[k] = s
+            if s > hB:
+                hB = s
+        for k in range(B.nv):
+            v = B.verts + 3 * k
+            s = sB[k] if k < SUPPORT_BUF else -ut - F.sb * _dot(ub, v)
+            if s >= hB - ftol and nb < POLY_MAXFEAT:
+                PB[2 * nb] = t1t + F.sb * _dot(t1b, v)
+                PB[2 * nb + 1] = t2t + F.sb * _dot(t2b, v)
+                nb += 1
     cplane[0] = 0.5 * (hA - hB)
-    for k in range(A.nv):
-        v = A.verts + 3 * k
-        s = sA[k] if k < SUPPORT_BUF else F.sa * _dot(u, v)
-        if s >= hA - ftol and na < POLY_MAXFEAT:
-            PA[2 * na] = F.sa * _dot(t1, v)
-            PA[2 * na + 1] = F.sa * _dot(t2, v)
-            na += 1
-    for k in range(B.nv):
-        v = B.verts + 3 * k
-        s = sB[k] if k < SUPPORT_BUF else -_dot(u, F.t) - F.sb * _dot(ub, v)
-        if s >= hB - ftol and nb < POLY_MAXFEAT:
-            PB[2 * nb] = _dot(t1, F.t) + F.sb * _dot(t1b, v)
-            PB[2 * nb + 1] = _dot(t2, F.t) + F.sb * _dot(t2b, v)
-            nb += 1
     if na > 1 and nb > 1:                  # (a single vertex makes the contact: no hull needed)
-        na = _hull2(PA, na, tol)
-        nb = _hull2(PB, nb, tol)
+        na = _hull2(PA, na, tol) if hullA else _box_ring(PA, na, tol)
+        nb = _hull2(PB, nb, tol) if hullB else _box_ring(PB, nb, tol)
     nfa[0] = na
     nfb[0] = nb
     if na == 1 or nb == 1:

@@ -56,16 +56,18 @@ def penetration(shape_a, x_a, q_a, shape_b, x_b, q_b, box_path=True):
     return Penetration(r[1], r[2], r[3], r[4], r[5])
 
 
-def contact(shape_a, x_a, q_a, shape_b, x_b, q_b, ftol=None):
+def contact(shape_a, x_a, q_a, shape_b, x_b, q_b, ftol=None, box_path=True):
     """None when apart, else PolytopeContact(depth, normal, type, points (k, 3), axis, fa, fb, nfa, nfb):
     the shared overlap, the normal from b to a, the contact type (PC_*; TYPE_NAMES), 1 <= k <= MAXP points
     on the contact plane in a canonical order, the axis as ``penetration``, and the vertex counts of the
     two contacting features. ``ftol`` (a length; default FEATURE_TOL times the two bounding radii) selects
-    the vertices whose support is within ftol of the extreme as a body's contacting feature."""
+    the vertices whose support is within ftol of the extreme as a body's contacting feature. Boxes take
+    their closed-form paths unless ``box_path`` is false (tests)."""
     view = _pair(shape_a, shape_b)
     if ftol is None:
         ftol = -1.0
-    r = _polytope.pair(view, 0, 1, _vec(x_a, 3), _vec(q_a, 4), _vec(x_b, 3), _vec(q_b, 4), ftol=float(ftol))
+    r = _polytope.pair(view, 0, 1, _vec(x_a, 3), _vec(q_a, 4), _vec(x_b, 3), _vec(q_b, 4), ftol=float(ftol),
+                       box_path=box_path)
     if not r[0]:
         return None
     return PolytopeContact(r[1], r[2], r[6], r[7], r[3], r[4], r[5], r[8], r[9])

@@ -4,16 +4,20 @@
 * time-averaged coordination number against the rotation rate (Fig. 25), from the series files (average
   over the last half of each run);
 * probability density of the time-averaged particle velocity / (Omega R) (Fig. 27), from the HDF5 dumps
-  (per-particle average of |v| over the frames of the last half of the run).
+  (per-particle average of |v| over the frames of the last half of the run);
+* with --h5, the flow regime of each run from measured markers (dem.tools.drum_regimes: co-rotating
+  fractions, free flight, intermittency) printed as a table and drawn as the map of Fig. 30, next to what
+  Part III's text says of 3D crosses with --paper cross3d.
 
     dem-drum-analysis --rpm 20 40 80 --series d20.dat d40.dat d80.dat [--h5 d20.h5 d40.h5 d80.h5]
-                      [--radius 0.05] [-o drum]
+                      [--radius 0.05] [--label "dem, 3D crosses"] [--paper cross3d] [-o drum]
 
 (also `python -m dem.tools.drum_analysis ...`, or `python tools/drum_analysis.py ...` in the source tree.)
 
-writes drum_vmean.png, drum_coordination.png and (with --h5) drum_pdf.png. The series files must hold the
-columns c_vm (compute vmean ... drum ...: already divided by Omega R) and c_cn (compute coord), as
-inputs/in.drum writes them; their first line is taken as t = 0 of the rotation.
+writes drum_vmean.png, drum_coordination.png and (with --h5) drum_pdf.png and drum_regimes.png. The series
+files must hold the columns c_vm (compute vmean ... drum ...: already divided by Omega R), c_cn (compute
+coord), c_surf (compute repose) and c_co, c_co[2] (compute corotate), as inputs/in.drum writes them; their
+first line is taken as t = 0 of the rotation.
 """
 import argparse
 import math
@@ -21,6 +25,7 @@ import sys
 
 import numpy as np
 
+from . import drum_regimes
 from .plot_series import read_series
 
 
@@ -53,6 +58,8 @@ def main(argv=None):
     p.add_argument("--series", nargs="+", required=True)
     p.add_argument("--h5", nargs="*", default=None)
     p.add_argument("--radius", type=float, default=0.05)
+    p.add_argument("--label", default="dem")
+    p.add_argument("--paper", choices=["cross3d"], default=None, help="add Part III's regimes of this shape")
     p.add_argument("-o", "--output", default="drum")
     a = p.parse_args(argv)
     if len(a.series) != len(a.rpm) or (a.h5 and len(a.h5) != len(a.rpm)):
@@ -95,6 +102,19 @@ def main(argv=None):
         ax.grid(alpha=0.3)
         outputs.append(f"{a.output}_pdf.png")
         fig.savefig(outputs[-1], dpi=100)
+
+        print("rpm  corotating  carried  free_flight  vm     vm_cv  angle  angle_std  coordination  regime")
+        found = {}
+        for rpm, series, h5 in zip(a.rpm, a.series, a.h5):
+            m = drum_regimes.markers(series, h5, a.radius)
+            found[rpm] = drum_regimes.classify(m)
+            print(f"{rpm:<4g} {m['corotating']:10.3f} {m['carried']:8.3f} {m['free_flight']:12.4f} {m['vm']:6.3f} "
+                  f"{m['vm_cv']:6.3f} {m['angle']:6.1f} {m['angle_std']:10.1f} {m['coordination']:13.2f}  {found[rpm]}")
+        rows = [(a.label, found)]
+        if a.paper == "cross3d":
+            rows.insert(0, ("Part III (text), 3D crosses", drum_regimes.PAPER_CROSS3D))
+        outputs.append(f"{a.output}_regimes.png")
+        drum_regimes.regime_map(rows, outputs[-1])
     for o in outputs:
         print(o)
 

@@ -18,7 +18,8 @@ import numpy as np
 
 
 def read_frames(path):
-    """[(step, time, {name: array})] of a dem HDF5 dump, in step order."""
+    """[(step, time, {name: array})] of a dem HDF5 dump, in step order: the per-particle fields (a frame's
+    groups, e.g. the posed surfaces of shaped particles, are left out)."""
     import h5py
     out = []
     with h5py.File(path, "r", locking=False) as f:
@@ -26,7 +27,7 @@ def read_frames(path):
             raise SystemExit(f"{path}: not a dem HDF5 dump")
         for name in sorted(f["frames"]):
             g = f["frames"][name]
-            arrays = {k: g[k][()] for k in g}
+            arrays = {k: g[k][()] for k in g if isinstance(g[k], h5py.Dataset)}
             out.append((int(g.attrs["step"]), float(g.attrs["time"]), arrays))
     return out
 

@@ -361,6 +361,9 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 if code > 1:
                     nepa += 1
             ncont += 1
+            if P.ccount != NULL:       # per-particle contact count for analysis (dem/tally.py)
+                P.ccount[i] += 1.0
+                P.ccount[j] += 1.0
             rmin = P.radius[i] if P.radius[i] < P.radius[j] else P.radius[j]
             if con.delta > maxov * (2.0 * rmin):     # (a division only for a new largest overlap)
                 maxov = con.delta / (2.0 * rmin)

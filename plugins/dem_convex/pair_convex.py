@@ -52,7 +52,7 @@ class PairConvexGJK(PairCoefficients, Pair):
     """
 
     style = "convex/gjk"
-    tallies = ("stress",)    # per-particle contact tallies for analysis (dem/tally.py)
+    tallies = ("stress", "count")    # per-particle contact tallies for analysis (dem/tally.py)
 
     def __init__(self, sim, args):
         super().__init__(sim, args)

@@ -300,6 +300,9 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     continue
                 ncont += 1.0
                 npts += npt
+                if P.ccount != NULL:       # per-particle contact count for analysis (dem/tally.py)
+                    P.ccount[i] += 1.0
+                    P.ccount[j] += 1.0
                 weight = 1.0 / npt if model_b else 1.0
                 meff = P.rmass[i] * P.rmass[j] / (P.rmass[i] + P.rmass[j])
                 if not model_b:                # eq. 18: gamma_n of N_c summed springs

@@ -45,7 +45,7 @@ class PairGluedConvex(PairCoefficients, Pair):
     """
 
     style = "glued/convex"
-    tallies = ("stress",)    # per-particle contact tallies for analysis (dem/tally.py)
+    tallies = ("stress", "count")    # per-particle contact tallies for analysis (dem/tally.py)
 
     def __init__(self, sim, args):
         super().__init__(sim, args)

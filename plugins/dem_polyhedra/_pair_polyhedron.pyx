@@ -169,14 +169,14 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
     cdef const TableView* T = &table
     cdef const TopoTable* TT = &T.topo
     cdef KeyedView* h = &hist.view
-    cdef int i, j, d, q, npt, si, sj, typ
+    cdef int i, j, d, q, npt, si, sj, typ, sb = -1
     cdef i64 k, r, resume = -1, fresh
     cdef double dx[3]
     cdef double Ri[9]
     cdef double Rj[9]
     cdef double bpt[3]
     cdef double out[6]
-    cdef double r2, rsum, dist, meff, weight, si_scale, sj_scale, reff, tol2, gap
+    cdef double r2, rsum, dist, meff, weight, si_scale, sj_scale, reff, tol2, gap, inv_si
     cdef const double* cf
     cdef double maxov = stats[2]
     cdef bint ri, rj
@@ -191,6 +191,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
         return -1
     with nogil:
         for i in range(keyed_owner(&offsets[0], P.nlocal, start), P.nlocal):
+            si = -1                            # the owner's pose and topology: once per row, when needed
             for k in range(max(offsets[i], start), offsets[i + 1]):
                 j = neigh[k]
                 gap = margin[k] - (move[i] + move[j])
@@ -205,13 +206,17 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 if r2 >= rsum * rsum:
                     margin[k] = sqrt(r2) - rsum - MARGIN_SAFETY * rsum
                     continue
-                si = P.shape[i]
+                if si < 0:
+                    si = P.shape[i]
+                    ri = round_body(T, si)
+                    si_scale = P.radius[i] if ri else P.radius[i] / T.radius[si]
+                    inv_si = 1.0 / si_scale
+                    _unscaled(&rot[i, 0], si_scale, Ri)
+                    if not ri:
+                        polytope_ref(TT, si, &A)
                 sj = P.shape[j]
-                ri = round_body(T, si)
                 rj = round_body(T, sj)
                 typ = -1
-                si_scale = P.radius[i] if ri else P.radius[i] / T.radius[si]
-                _unscaled(&rot[i, 0], si_scale, Ri)
                 if ri and rj:                  # two spheres: analytic
                     dist = sqrt(r2)
                     if dist == 0.0:
@@ -226,8 +231,9 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 else:
                     sj_scale = P.radius[j] / T.radius[sj]
                     _unscaled(&rot[j, 0], sj_scale, Rj)
-                    polytope_ref(TT, si, &A)
-                    polytope_ref(TT, sj, &B)
+                    if sj != sb:               # (consecutive neighbours mostly share a shape)
+                        polytope_ref(TT, sj, &B)
+                        sb = sj
                     # bounding boxes first, unless both are boxes (the query itself stops at a gap)
                     if A.half == NULL or B.half == NULL:
                         gap = boxes_gap(Ri, 1.0, &P.x[3 * i], &T.half[3 * si], si_scale,
@@ -266,7 +272,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                         for d in range(3):
                             dx[d] = con[q].p[d] - P.x[3 * i + d]
                         for d in range(3):
-                            bpt[d] = (Ri[d] * dx[0] + Ri[3 + d] * dx[1] + Ri[6 + d] * dx[2]) / si_scale
+                            bpt[d] = (Ri[d] * dx[0] + Ri[3 + d] * dx[1] + Ri[6 + d] * dx[2]) * inv_si
                         if h.offsets[k + 1] - h.offsets[k] <= 4 * POLY_MAXP:
                             con[q].key = _match(h, k, bpt, tol2, taken, &fresh)
                         else:
@@ -288,6 +294,9 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     maxov = con[0].delta / dist
                 stats[0] += 1.0
                 stats[1] += npt
+                if P.ccount != NULL:       # per-particle contact count for analysis (dem/tally.py)
+                    P.ccount[i] += 1.0
+                    P.ccount[j] += 1.0
                 if typ > 0:
                     stats[3 + typ] += 1.0
                     if typ == PC_FACE_FACE:

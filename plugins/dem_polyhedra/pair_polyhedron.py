@@ -55,7 +55,7 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
     """
 
     style = "polyhedron/multipoint"
-    tallies = ("stress", "types")    # per-particle contact tallies for analysis (dem/tally.py)
+    tallies = ("stress", "types", "count")    # per-particle contact tallies for analysis (dem/tally.py)
 
     def __init__(self, sim, args):
         super().__init__(sim, args)

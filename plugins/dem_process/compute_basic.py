@@ -59,11 +59,13 @@ class ComputeERotate(Compute):
 class ComputeCoord(Compute):
     """compute ID group coord
 
-    Coordination number: the mean number of contacts per particle, Z = 2 C / N, with C the
-    particle-particle contacts of the last force evaluation (pair style) and N the number of particles.
-    Vector: [Z, Z counting wall contacts too (2 C + W) / N, C, W], W the contacts of the wall fixes
-    (every fix with a contact count: wall/plane, wall/drum). The pair style counts contacts over all
-    particles: the group must be `all`."""
+    Coordination number: the mean number of contacts per particle of the group, Z = sum_i c_i / N, c_i
+    the particle-particle contacts of particle i at the last force evaluation (pair style; a pair touching
+    at several points counts once) and N the group's particles; for group `all`, 2 C / N with C the
+    contacts. Vector: [Z, Z counting wall contacts too (sum_i c_i + W) / N, sum_i c_i / 2 (C for `all`),
+    W], W the contacts of the wall fixes (every fix with a contact count: wall/plane, wall/drum,
+    wall/mesh; all of them, whatever their group). A group other than `all` reads the per-particle
+    contact count (dem/tally.py), which every pair style fills."""
 
     style = "coord"
     size_vector = 4
@@ -72,24 +74,27 @@ class ComputeCoord(Compute):
     def __init__(self, sim, cid, group, args):
         super().__init__(sim, cid, group, args)
         self.parser().exactly(0)
-        if group != "all":
-            raise DemError(f"compute {cid} coord: the pair style counts contacts over all particles: use "
-                           f"group all")
+        self.whole = group == "all"
+        self.tallies = () if self.whole else ("count",)
 
     def _counts(self):
         sim = self.sim
-        c = sim.comm.sum(sim.pair.ncontacts) if sim.pair is not None else 0
         w = sum(sim.comm.sum(getattr(f, "ncontacts", 0)) for f in sim.modify.fixes
                 if isinstance(getattr(f, "ncontacts", None), int))
-        return c, w, sim.atom.natoms
+        if self.whole:
+            c = sim.comm.sum(sim.pair.ncontacts) if sim.pair is not None else 0
+            return 2.0 * c, w, sim.atom.natoms
+        ends = sim.tally.get("count", f"compute {self.id} coord")[:, 0]
+        sel = self.group_mask()
+        return sim.comm.sum(float(ends[sel].sum())), w, sim.comm.sum(int(sel.sum()))
 
     def compute_scalar(self):
-        c, _, n = self._counts()
-        return 2.0 * c / n if n else 0.0
+        ends, _, n = self._counts()
+        return ends / n if n else 0.0
 
     def compute_vector(self):
-        c, w, n = self._counts()
-        return np.array([2.0 * c / n if n else 0.0, (2.0 * c + w) / n if n else 0.0, c, w], dtype=float)
+        ends, w, n = self._counts()
+        return np.array([ends / n if n else 0.0, (ends + w) / n if n else 0.0, 0.5 * ends, w], dtype=float)
 
 
 class ComputeVMean(Compute):

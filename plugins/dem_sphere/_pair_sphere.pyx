@@ -51,6 +51,9 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     con.n[d] = dx[d] * rinv
                 con.delta = rsum - r
                 ncont += 1
+                if P.ccount != NULL:       # per-particle contact count for analysis (dem/tally.py)
+                    P.ccount[i] += 1.0
+                    P.ccount[j] += 1.0
                 ov = con.delta / (2.0 * (P.radius[i] if P.radius[i] < P.radius[j] else P.radius[j]))
                 if ov > maxov:
                     maxov = ov

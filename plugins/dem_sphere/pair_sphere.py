@@ -48,7 +48,7 @@ class PairSphere(PairCoefficients, Pair):
 
 
     style = "sphere"
-    tallies = ("stress",)    # per-particle contact tallies for analysis (dem/tally.py)
+    tallies = ("stress", "count")    # per-particle contact tallies for analysis (dem/tally.py)
 
     def __init__(self, sim, args):
         super().__init__(sim, args)
