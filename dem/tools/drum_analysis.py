@@ -103,6 +103,10 @@ def main(argv=None):
         outputs.append(f"{a.output}_pdf.png")
         fig.savefig(outputs[-1], dpi=100)
 
+        lacking = sorted({c for path in a.series for c in drum_regimes.missing_columns(path)})
+        if lacking:
+            print(f"no regimes: the series lack the columns {' '.join(lacking)} (inputs/in.drum writes them)")
+    if a.h5 and not lacking:
         print("rpm  corotating  carried  free_flight  vm     vm_cv  angle  angle_std  coordination  regime")
         found = {}
         for rpm, series, h5 in zip(a.rpm, a.series, a.h5):

@@ -66,6 +66,14 @@ def free_flight_fraction(path, radius, axis=1, last_half=True):
     return float(np.mean(fractions)) if fractions else 0.0
 
 
+COLUMNS = ("c_vm", "c_co", "c_co[2]", "c_surf", "c_cn")     # the series columns the markers read
+
+
+def missing_columns(series):
+    names, _ = read_series(series)
+    return [c for c in COLUMNS if c not in names]
+
+
 def markers(series, h5=None, radius=0.05, axis=1):
     """The markers of one run (module doc) as a dict; free_flight is NaN without an HDF5 dump."""
     _, c = read_series(series)
