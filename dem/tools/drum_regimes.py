@@ -2,9 +2,11 @@
 
 Markers of one run, over the last half of its rotation (`markers`):
 * co-rotating fraction (compute corotate, c_co) and the fraction co-rotating at the top (c_co[2]);
-* free-flight fraction: bed particles (type 1) whose centre is farther than r_i + r_max from every other
-  particle's centre (r the bounding radii; periodic along the drum axis) and from the drum wall, i.e.
-  touching nothing: from the HDF5 frames;
+* free-flight fraction: bed particles (type 1) whose centre is farther than r_i + 1.25 r_max from every
+  other particle's centre (r the bounding radii; periodic along the drum axis) and farther than 1.25 r_i
+  from the drum wall: touching nothing, with a clear gap (a quarter of the largest radius: in a dense bed
+  at rest or carried by the wall, neighbours sit at contact distance give or take round-off), from the
+  HDF5 frames;
 * the mean and the coefficient of variation (std / mean) of <|v|> / (Omega R) (c_vm), the mean and the
   standard deviation of the surface angle (c_surf), the mean coordination (c_cn).
 
@@ -29,6 +31,7 @@ COLOURS = {"avalanching": "#4477aa", "cascading": "#66ccee", "cataracting": "#22
 CENTRIFUGING = 0.95
 CARRIED = 0.05
 FREE_FLIGHT = 0.01
+GAP = 0.25             # the clear gap of a particle in free flight, times the largest radius
 INTERMITTENT = 0.2
 
 # Part III sec. 4.2.1, 3D crosses, the regimes the text names at each rate (Fig. 30 is a sketch: "values of
@@ -58,10 +61,10 @@ def free_flight_fraction(path, radius, axis=1, last_half=True):
             box[axis] = hi[axis] - lo[axis]
             y = np.mod(x - lo, box)
             dist, _ = cKDTree(y, boxsize=box).query(y[bed], k=2)
-            reach = r[bed] + r.max()
+            reach = r[bed] + (1.0 + GAP) * r.max()
             others = [k for k in range(3) if k != axis]
             wall = radius - np.sqrt((x[bed][:, others] ** 2).sum(1))
-            free = (dist[:, 1] > reach) & (wall > r[bed])
+            free = (dist[:, 1] > reach) & (wall > (1.0 + GAP) * r[bed])
             fractions.append(free.mean() if bed.any() else 0.0)
     return float(np.mean(fractions)) if fractions else 0.0
 
