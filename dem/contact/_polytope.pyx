@@ -57,7 +57,7 @@ cdef double SAT_PARALLEL = 1e-12   # |sin| of two edges below which they are par
 cdef double SAT_SMALLSIN = 1e-4    # below this |sin| an edge axis is evaluated from the full supports
 cdef enum:
     EDGE_BUF = 256                 # edges of A pruned by the overlap slab in _sat_frame (a larger A pairs them all)
-    SUPPORT_BUF = 256              # support values kept per body in _contact_frame (larger bodies recompute)
+    SUPPORT_BUF = 256              # support values kept per body in _feature (larger bodies recompute)
 cdef double HULL_TOL = 1e-12       # relative (to L) distance below which plane points coincide / are collinear
 
 MAXP = POLY_MAXP
@@ -781,6 +781,46 @@ cdef int _box_ring(double* P, int n, double tol) noexcept nogil:
     return n
 
 
+cdef inline int _feature(const Polytope* P, double s, const double* w, double w0, const double* p1, double o1,
+                         const double* p2, double o2, double ftol, double* out, double* h, bint* hull) noexcept nogil:
+    """The contacting feature of body P (scale s) along w (its frame): the vertices whose support
+    w0 + s w.v is within ftol of the largest, h, as plane points (o1 + s p1.v, o2 + s p2.v) in out; returns
+    their count. A box takes them from its corner bits (_box_feature: in cyclic order, hull false), any
+    other body from its vertex loop (hull true: _hull2 orders them)."""
+    cdef double sv[SUPPORT_BUF]
+    cdef double c[3]
+    cdef double best = -INFINITY, x
+    cdef int corners[4]
+    cdef int k, n = 0
+    cdef const double* v
+    if P.half != NULL:
+        n = _box_feature(P.half, s, w, ftol, corners)
+        if n:
+            h[0] = w0 + s * (P.half[0] * fabs(w[0]) + P.half[1] * fabs(w[1]) + P.half[2] * fabs(w[2]))
+            for k in range(n):
+                _corner(P.half, corners[k], c)
+                out[2 * k] = o1 + s * _dot(p1, c)
+                out[2 * k + 1] = o2 + s * _dot(p2, c)
+            hull[0] = False
+            return n
+    for k in range(P.nv):
+        x = w0 + s * _dot(w, P.verts + 3 * k)
+        if k < SUPPORT_BUF:
+            sv[k] = x
+        if x > best:
+            best = x
+    for k in range(P.nv):
+        v = P.verts + 3 * k
+        x = sv[k] if k < SUPPORT_BUF else w0 + s * _dot(w, v)
+        if x >= best - ftol and n < POLY_MAXFEAT:
+            out[2 * n] = o1 + s * _dot(p1, v)
+            out[2 * n + 1] = o2 + s * _dot(p2, v)
+            n += 1
+    h[0] = best
+    hull[0] = True
+    return n
+
+
 cdef int _contact_frame(const Polytope* A, const Polytope* B, const Frame* F, const double* u, double depth,
                         double ftol, double* pts, int* nfa, int* nfb, double* t1, double* t2,
                         double* cplane) noexcept nogil:
@@ -789,18 +829,13 @@ cdef int _contact_frame(const Polytope* A, const Polytope* B, const Frame* F, co
     cdef double PA[2 * (2 * POLY_MAXFEAT + 2)]
     cdef double PB[2 * (2 * POLY_MAXFEAT + 2)]
     cdef double W[2 * (4 * POLY_MAXFEAT + 4)]
-    cdef double sA[SUPPORT_BUF]
-    cdef double sB[SUPPORT_BUF]
     cdef double ub[3]
     cdef double t1b[3]
     cdef double t2b[3]
     cdef double e[3]
-    cdef double hA = -INFINITY, hB = -INFINITY, s, ln, tol = HULL_TOL * F.L, ut, t1t, t2t
-    cdef int k, na = 0, nb = 0, n, ax
-    cdef int cA[4]
-    cdef int cB[4]
-    cdef bint crossing, hullA = True, hullB = True
-    cdef const double* v
+    cdef double hA, hB, s, ln, tol = HULL_TOL * F.L
+    cdef int k, na, nb, n, ax
+    cdef bint crossing, hullA, hullB
     # basis of the plane: t1 from the world axis least aligned with u, t2 = u x t1 (t1, t2, u right-handed)
     ax = 0
     if fabs(u[1]) < fabs(u[ax]):
@@ -817,62 +852,15 @@ cdef int _contact_frame(const Polytope* A, const Polytope* B, const Frame* F, co
     t1[1] *= ln
     t1[2] *= ln
     _cross(u, t1, t2)
-    # support values of every vertex along u (A) and -u (B), then the vertices within ftol of the extreme;
-    # B is read in its own frame (directions rotated once by M^T) rather than posed vertex by vertex
+    # each body's contacting feature: the vertices within ftol of its support along u (A) and -u (B),
+    # projected on the plane; B is read in its own frame (directions rotated once by M^T) rather than
+    # posed vertex by vertex: support -u.t + sb (-M^T u).v, plane point (t1.t + sb (M^T t1).v, ...)
     mat_tvec(F.M, u, ub)
     mat_tvec(F.M, t1, t1b)
     mat_tvec(F.M, t2, t2b)
-    ut = _dot(u, F.t)
-    t1t = _dot(t1, F.t)
-    t2t = _dot(t2, F.t)
-    # a box finds its feature from the corner bits (_box_feature), already in order: no hull
-    if A.half != NULL:
-        hA = F.sa * (A.half[0] * fabs(u[0]) + A.half[1] * fabs(u[1]) + A.half[2] * fabs(u[2]))
-        na = _box_feature(A.half, F.sa, u, ftol, cA)
-    if na:
-        for k in range(na):
-            _corner(A.half, cA[k], e)
-            PA[2 * k] = F.sa * _dot(t1, e)
-            PA[2 * k + 1] = F.sa * _dot(t2, e)
-        hullA = False
-    else:
-        for k in range(A.nv):
-            s = F.sa * _dot(u, A.verts + 3 * k)
-            if k < SUPPORT_BUF:
-                sA[k] = s
-            if s > hA:
-                hA = s
-        for k in range(A.nv):
-            v = A.verts + 3 * k
-            s = sA[k] if k < SUPPORT_BUF else F.sa * _dot(u, v)
-            if s >= hA - ftol and na < POLY_MAXFEAT:
-                PA[2 * na] = F.sa * _dot(t1, v)
-                PA[2 * na + 1] = F.sa * _dot(t2, v)
-                na += 1
-    if B.half != NULL:
-        hB = -ut + F.sb * (B.half[0] * fabs(ub[0]) + B.half[1] * fabs(ub[1]) + B.half[2] * fabs(ub[2]))
-        e[0], e[1], e[2] = -ub[0], -ub[1], -ub[2]
-        nb = _box_feature(B.half, F.sb, e, ftol, cB)
-    if nb:
-        for k in range(nb):
-            _corner(B.half, cB[k], e)
-            PB[2 * k] = t1t + F.sb * _dot(t1b, e)
-            PB[2 * k + 1] = t2t + F.sb * _dot(t2b, e)
-        hullB = False
-    else:
-        for k in range(B.nv):
-            s = -ut - F.sb * _dot(ub, B.verts + 3 * k)
-            if k < SUPPORT_BUF:
-                sB[k] = s
-            if s > hB:
-                hB = s
-        for k in range(B.nv):
-            v = B.verts + 3 * k
-            s = sB[k] if k < SUPPORT_BUF else -ut - F.sb * _dot(ub, v)
-            if s >= hB - ftol and nb < POLY_MAXFEAT:
-                PB[2 * nb] = t1t + F.sb * _dot(t1b, v)
-                PB[2 * nb + 1] = t2t + F.sb * _dot(t2b, v)
-                nb += 1
+    ub[0], ub[1], ub[2] = -ub[0], -ub[1], -ub[2]
+    na = _feature(A, F.sa, u, 0.0, t1, 0.0, t2, 0.0, ftol, PA, &hA, &hullA)
+    nb = _feature(B, F.sb, ub, -_dot(u, F.t), t1b, _dot(t1, F.t), t2b, _dot(t2, F.t), ftol, PB, &hB, &hullB)
     cplane[0] = 0.5 * (hA - hB)
     if na > 1 and nb > 1:                  # (a single vertex makes the contact: no hull needed)
         na = _hull2(PA, na, tol) if hullA else _box_ring(PA, na, tol)
