@@ -23,6 +23,13 @@ cdef struct Particles:
     double* ccount
 
 
+cdef inline void count_contact(const Particles* P, int i, int j) noexcept nogil:
+    """One more pair contact for particles i and j in the `count` tally (dem/tally.py), when asked for."""
+    if P.ccount != NULL:
+        P.ccount[i] += 1.0
+        P.ccount[j] += 1.0
+
+
 cdef class ParticleView:
     cdef Particles p
     cdef tuple _keep

@@ -22,7 +22,7 @@ in memory and the solve is short."""
 cimport numpy as cnp
 from libc.math cimport sqrt, fabs
 import numpy as np
-from dem._particles cimport ParticleView, Particles
+from dem._particles cimport ParticleView, Particles, count_contact
 from dem.contact.record cimport Contact
 from dem.contact._gjk cimport crust_contact, CONTACT_NONE, CONTACT_CRUST, NFEAT
 from dem.shapes._support cimport (ShapeRef, Kind, quat_to_rot, support_world, polytope_core, box_corners,
@@ -361,9 +361,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 if code > 1:
                     nepa += 1
             ncont += 1
-            if P.ccount != NULL:       # per-particle contact count for analysis (dem/tally.py)
-                P.ccount[i] += 1.0
-                P.ccount[j] += 1.0
+            count_contact(P, i, j)
             rmin = P.radius[i] if P.radius[i] < P.radius[j] else P.radius[j]
             if con.delta > maxov * (2.0 * rmin):     # (a division only for a new largest overlap)
                 maxov = con.delta / (2.0 * rmin)

@@ -19,7 +19,7 @@ from libc.math cimport sqrt, fabs
 from libc.stdlib cimport malloc, free
 import numpy as np
 from dem._history cimport KeyedBuffers, KeyedView, keyed_append, keyed_owner, keyed_reserve
-from dem._particles cimport ParticleView, Particles
+from dem._particles cimport ParticleView, Particles, count_contact
 from dem.contact.record cimport Contact
 from dem.contact._gjk cimport crust_contact, CONTACT_NONE, CONTACT_CRUST, NFEAT
 from dem.shapes._support cimport ShapeRef, Kind, quat_to_rot, NPARAM
@@ -300,9 +300,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     continue
                 ncont += 1.0
                 npts += npt
-                if P.ccount != NULL:       # per-particle contact count for analysis (dem/tally.py)
-                    P.ccount[i] += 1.0
-                    P.ccount[j] += 1.0
+                count_contact(P, i, j)
                 weight = 1.0 / npt if model_b else 1.0
                 meff = P.rmass[i] * P.rmass[j] / (P.rmass[i] + P.rmass[j])
                 if not model_b:                # eq. 18: gamma_n of N_c summed springs

@@ -27,7 +27,7 @@ cimport numpy as cnp
 from libc.math cimport sqrt
 import numpy as np
 from dem._history cimport KeyedBuffers, KeyedView, keyed_append, keyed_owner, keyed_reserve
-from dem._particles cimport ParticleView, Particles
+from dem._particles cimport ParticleView, Particles, count_contact
 from dem.contact.record cimport Contact
 from dem.contact._bounds cimport boxes_gap
 from dem.contact._gjk cimport crust_contact, CONTACT_NONE, NFEAT
@@ -294,9 +294,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     maxov = con[0].delta / dist
                 stats[0] += 1.0
                 stats[1] += npt
-                if P.ccount != NULL:       # per-particle contact count for analysis (dem/tally.py)
-                    P.ccount[i] += 1.0
-                    P.ccount[j] += 1.0
+                count_contact(P, i, j)
                 if typ > 0:
                     stats[3 + typ] += 1.0
                     if typ == PC_FACE_FACE:

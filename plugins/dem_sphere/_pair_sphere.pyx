@@ -3,7 +3,7 @@
 centres), then the shared law (dem_contact/apply.pxd)."""
 cimport numpy as cnp
 from libc.math cimport sqrt
-from dem._particles cimport ParticleView, Particles
+from dem._particles cimport ParticleView, Particles, count_contact
 from dem.contact.record cimport Contact
 from dem_contact.apply cimport Body, apply_pair
 from dem_contact.law cimport forget
@@ -51,9 +51,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     con.n[d] = dx[d] * rinv
                 con.delta = rsum - r
                 ncont += 1
-                if P.ccount != NULL:       # per-particle contact count for analysis (dem/tally.py)
-                    P.ccount[i] += 1.0
-                    P.ccount[j] += 1.0
+                count_contact(P, i, j)
                 ov = con.delta / (2.0 * (P.radius[i] if P.radius[i] < P.radius[j] else P.radius[j]))
                 if ov > maxov:
                     maxov = ov
