@@ -163,8 +163,7 @@ cdef inline int _box_edge(const Polytope* P, int i, const double* w) noexcept no
     bit i and share bit k = (w_k > 0) for the other axes (box_corners order)."""
     cdef int k, c = 0
     for k in range(3):
-        if k != i and w[k] > 0.0:
-            c |= 1 << k
+        c |= ((k != i) & (w[k] > 0.0)) << k
     return BOX_EDGE[3 * c + i]
 
 
@@ -712,9 +711,19 @@ cdef int _canonical(double* P, int n) noexcept nogil:
 
 cdef inline void _corner(const double* half, int c, double* o) noexcept nogil:
     """Corner c of a box (bit k set: +half_k; box_topology's order)."""
-    o[0] = half[0] if c & 1 else -half[0]
-    o[1] = half[1] if c & 2 else -half[1]
-    o[2] = half[2] if c & 4 else -half[2]
+    o[0] = (<double>(c & 1) * 2.0 - 1.0) * half[0]          # (times +-1: exact, and no branch on c)
+    o[1] = (<double>((c >> 1) & 1) * 2.0 - 1.0) * half[1]
+    o[2] = (<double>((c >> 2) & 1) * 2.0 - 1.0) * half[2]
+
+
+cdef int FREE_COUNT[8]               # of a 3-bit mask: its set bits, the lowest, the second lowest
+cdef int FREE_FIRST[8]
+cdef int FREE_SECOND[8]
+for _k in range(8):
+    _bits = [_m for _m in range(3) if _k >> _m & 1]
+    FREE_COUNT[_k] = len(_bits)
+    FREE_FIRST[_k] = _bits[0] if _bits else -1
+    FREE_SECOND[_k] = _bits[1] if len(_bits) > 1 else -1
 
 
 cdef inline int _box_feature(const double* half, double s, const double* w, double ftol, int* c) noexcept nogil:
@@ -724,24 +733,20 @@ cdef inline int _box_feature(const double* half, double s, const double* w, doub
     corner. Returns 0 for any other set (3 corners, or more than a face: a box thinner than ftol), which
     the general loop then takes."""
     cdef double d[3]
-    cdef int k, c0 = 0, nfree = 0, a = -1, b = -1
-    for k in range(3):
-        if w[k] > 0.0:
-            c0 |= 1 << k
+    cdef int k, c0 = 0, free = 0, a, b
+    for k in range(3):                 # (no branches on the data: the bits are set from comparisons)
+        c0 |= (w[k] > 0.0) << k
         d[k] = 2.0 * s * half[k] * fabs(w[k])
-        if d[k] <= ftol:
-            nfree += 1
-            if a < 0:
-                a = k
-            else:
-                b = k
+        free |= (d[k] <= ftol) << k
     c[0] = c0
-    if nfree == 0:
+    if free == 0:
         return 1
-    if nfree == 1:
+    a = FREE_FIRST[free]
+    if FREE_COUNT[free] == 1:
         c[1] = c0 ^ (1 << a)
         return 2
-    if nfree == 2 and d[a] + d[b] <= ftol:
+    b = FREE_SECOND[free]
+    if FREE_COUNT[free] == 2 and d[a] + d[b] <= ftol:
         c[1] = c0 ^ (1 << a)
         c[2] = c0 ^ (1 << a) ^ (1 << b)
         c[3] = c0 ^ (1 << b)
