@@ -102,13 +102,16 @@ def coal_tf(x, q, off):
     return coal.Transform3s(R, x + R @ np.array([0.0, 0.0, off]))
 
 
+COAL_EPA_TOL = 1e-10      # coal's EPA stops within this (m): the bound on its depth for polytope cores
+
+
 def coal_distance_request():
     req = coal.DistanceRequest()
     req.gjk_variant = coal.GJKVariant.NesterovAcceleration
     req.gjk_convergence_criterion_type = coal.GJKConvergenceCriterionType.Absolute
     req.gjk_tolerance = 1e-11
     req.gjk_max_iterations = 2000
-    req.epa_tolerance = 1e-10
+    req.epa_tolerance = COAL_EPA_TOL
     req.epa_max_iterations = 500
     return req
 
@@ -117,7 +120,7 @@ def coal_collision_request():
     req = coal.CollisionRequest(coal.CONTACT, 1)
     req.gjk_variant = coal.GJKVariant.NesterovAcceleration
     req.gjk_tolerance = 1e-11
-    req.epa_tolerance = 1e-10
+    req.epa_tolerance = COAL_EPA_TOL
     req.epa_max_iterations = 500
     return req
 
@@ -369,8 +372,11 @@ def test_contact_against_coal():
         exact = isinstance(A, POLYTOPES) and isinstance(B, POLYTOPES)
         # polytope cores: both sides exact up to round-off (seen: 1e-12). Curved: Coal stops on its GJK/EPA
         # tolerances (1e-11, 1e-10), which leave its depth ~1e-7 and its normal (~ square root of the gap)
-        # ~3e-4 off (seen); ours is certified above, so these bounds only catch gross disagreement
-        assert ov == pytest.approx(-c.penetration_depth, rel=1e-10 if exact else 1e-5, abs=1e-12 * scale)
+        # ~3e-4 off (seen); ours is certified above, so these bounds only catch gross disagreement. Coal's
+        # EPA stops on its tolerance for polytopes too: when this test runs alone (not after the others of
+        # this file) 6 of 234 polytope depths are 1.0-1.35e-10 off ours (median 6e-13), hence 2 tolerances
+        assert ov == pytest.approx(-c.penetration_depth, rel=1e-10 if exact else 1e-5,
+                                   abs=max(1e-12 * scale, 2 * COAL_EPA_TOL if exact else 0.0))
         assert np.linalg.norm(n + np.asarray(c.normal)) < (1e-9 if exact else 1e-3)
         assert np.linalg.norm(p - np.asarray(c.pos)) < (1e-9 if exact else 1e-4) * scale
     assert count[1] > 300 and count[2] > 300
