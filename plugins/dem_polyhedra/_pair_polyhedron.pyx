@@ -54,6 +54,7 @@ cdef double MARGIN_SAFETY = 1e-12  # margins are kept this much (relative to rsu
 cdef double POINT_PARAMS[NPARAM]   # a sphere of radius 0 (zero-initialised)
 
 LAWS = {"grains3d": LAW_GRAINS3D, "descantes": LAW_DESCANTES}
+RECW = 10                          # a recorded contact point: x y z, normal (3), force on i (3), overlap
 STATS = ("contacts", "points", "max_overlap", "energy", "vertex_face", "edge_edge", "edge_face", "face_face",
          "sphere", "face_face_points")
 
@@ -153,10 +154,13 @@ cdef inline i64 _match(const KeyedView* h, i64 k, const double* b, double tol2, 
 def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, const double[:, :, ::1] coeff,
             ShapeView shapes, const double[:, ::1] rot, const double[::1] move,
             double[::1] margin, double[::1] stats, KeyedBuffers hist, bint use_xi, double ftol_rel, double dt,
-            bint advance, int law, i64 start):
+            bint advance, int law, double[:, ::1] rec, i64[:, ::1] rec_ij, i64[::1] nrec, i64 start):
     """Adds the contact forces and torques of list entries from `start` on; returns -1, or the entry to
     resume from when the history buffer is full (dem/_history.pxd). stats receives STATS (summed; the
-    caller resets them once per step).
+    caller resets them once per step). With rows in `rec`, every contact point is recorded there (RECW
+    columns; rec_ij: the local indices i, j and the type, 1-4 as PolyContactType, 5 a pair with a
+    sphere), nrec[0] the rows used; an entry whose points do not fit stops the pass (nrec[1] = 1, the
+    entry returned, nothing of it applied): the caller grows the buffers and resumes there.
 
     rot[i] (scale_i R_i) and move[i] (how far any point of particle i moved since the last call) come from
     dem_convex's poses, once per step. margin[k] caches a lower bound of the gap of entry k (bounding
@@ -255,6 +259,10 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                             con[q].p[d] = pc.p[3 * q + d]
                 if npt == 0:
                     continue
+                if rec.shape[0] > 0 and nrec[0] + npt > rec.shape[0]:
+                    nrec[1] = 1
+                    resume = k
+                    break
                 if use_xi:
                     if not keyed_reserve(h, k, npt):
                         resume = k
@@ -326,6 +334,17 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     con[q].weight = weight
                     con[q].central = False
                     stats[3] += apply_pair_law(cf, &con[q], &BA, &BB, meff, reff, recs[q], dt, advance, out, law)
+                    if rec.shape[0] > 0:
+                        r = nrec[0]
+                        for d in range(3):
+                            rec[r, d] = con[q].p[d]
+                            rec[r, 3 + d] = con[q].n[d]
+                            rec[r, 6 + d] = out[d]
+                        rec[r, 9] = con[q].delta
+                        rec_ij[r, 0] = i
+                        rec_ij[r, 1] = j
+                        rec_ij[r, 2] = typ if typ > 0 else 5
+                        nrec[0] = r + 1
             if resume >= 0 or h.error:
                 break
     stats[2] = maxov

@@ -87,6 +87,10 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         self.npoints = 0
         self.contact_types = dict.fromkeys(TYPES, 0)
         self.work = _pair_convex.ConvexWork()   # per-step poses and per-entry margins (as convex/gjk)
+        self._rec, self._rec_ij = _NO_POINTS, _NO_POINTS_IJ   # contact points, on the steps a dump writes
+        self._nrec = np.zeros(2, np.int64)
+        self.contact_points = None
+        self.contact_points_step = None
 
     @property
     def multipoint_average(self):
@@ -117,9 +121,39 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
     def _kernel(self, view, st, buffers, use_xi, advance):
         nb = self.sim.neighbor
         w = self.work
-        return lambda start: _pair_polyhedron.compute(
-            view, nb.offsets, nb.neigh, self.table, self.shape_view, w.rot, w.move, w.margin,
-            st, buffers, use_xi, self.ftol, self.sim.update.dt, advance, _pair_polyhedron.LAWS[self.law], start)
+
+        def run(start):
+            resume = _pair_polyhedron.compute(
+                view, nb.offsets, nb.neigh, self.table, self.shape_view, w.rot, w.move, w.margin,
+                st, buffers, use_xi, self.ftol, self.sim.update.dt, advance, _pair_polyhedron.LAWS[self.law],
+                self._rec, self._rec_ij, self._nrec, start)
+            if self._nrec[1]:                  # the points buffer was full: grow it, resume at that entry
+                self._nrec[1] = 0
+                self._grow_points(2 * len(self._rec) + 16 * MAXP)
+            return resume
+        return run
+
+    def _grow_points(self, rows):
+        rec, ij = np.empty((rows, _pair_polyhedron.RECW)), np.empty((rows, 3), np.int64)
+        n = int(self._nrec[0])
+        rec[:n], ij[:n] = self._rec[:n], self._rec_ij[:n]
+        self._rec, self._rec_ij = rec, ij
+
+    def recording(self, step):
+        """True when a `dump ... contacts` (dump_contacts.py) writes `step`: the points are then kept
+        (`contact_points`)."""
+        sim = self.sim
+        return any(getattr(d, "records_contact_points", False) and step % d.every == 0
+                   for d in sim.output.dumps.values())
+
+    def _points(self):
+        """The recorded points as arrays (ids from the local indices)."""
+        n = int(self._nrec[0])
+        rec, ij = self._rec[:n], self._rec_ij[:n]
+        tag = self.sim.atom.data["tag"]
+        return {"point": rec[:, 0:3].copy(), "normal": rec[:, 3:6].copy(), "force": rec[:, 6:9].copy(),
+                "overlap": rec[:, 9].copy(), "type": ij[:, 2].astype(np.int32),
+                "ids": np.column_stack([tag[ij[:, 0]], tag[ij[:, 1]]]).astype(np.int64)}
 
     def compute(self, advance=True):
         sim = self.sim
@@ -127,17 +161,30 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         self.work.step(sim, view, self.shape_view)
         st = self.step_stats
         st[:] = 0.0
+        # a step's dumps follow its force pass and the drift: the pass of step n writes frame n + 1 (a
+        # setup pass, advance False, frame n)
+        frame = sim.update.ntimestep + (1 if advance else 0)
+        record = self.recording(frame)
+        if record:
+            if len(self._rec) == 0:
+                self._grow_points(max(64, 2 * self.npoints))
+        elif len(self._rec):
+            self._rec, self._rec_ij = _NO_POINTS, _NO_POINTS_IJ
+        self._nrec[:] = 0
         if self.use_xi:
             self.history.step(self._kernel(view, st, self.history.buffers, True, advance), advance)
         else:
-            if self._kernel(view, st, _EMPTY, False, advance)(0) != -1:
-                raise RuntimeError("pair polyhedron/multipoint: kernel stopped without a history")
+            run, start = self._kernel(view, st, _EMPTY, False, advance), 0
+            while start != -1:                 # stops only to grow the points buffer
+                start = run(start)
         s = dict(zip(_pair_polyhedron.STATS, st))
         self.ncontacts = int(s["contacts"])
         self.npoints = int(s["points"])
         self.max_overlap = float(s["max_overlap"])
         self.energy = float(s["energy"])
         self.contact_types = {k: int(s[k]) for k in TYPES}     # pairs of each type at the last compute
+        self.contact_points = self._points() if record else None
+        self.contact_points_step = frame if record else None
         if advance:
             for key, v in s.items():
                 if key != "max_overlap":
@@ -146,3 +193,6 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
 
 from dem import _history  # noqa: E402
 _EMPTY = _history.KeyedBuffers(_pair_polyhedron.RECORD)
+_NO_POINTS = np.empty((0, _pair_polyhedron.RECW))
+_NO_POINTS_IJ = np.empty((0, 3), np.int64)
+MAXP = _pair_polyhedron.MAXP
