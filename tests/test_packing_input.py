@@ -35,3 +35,23 @@ def test_unknown_container(tmp_path, monkeypatch):
     sim = dem.Simulation(screen=False, variables=[("container", ["can"])])
     sim.file(SCRIPT)
     assert sim.input.quit_status == 2 and sim.atom.natoms == 0
+
+
+def test_sharp_cubes_take_the_multipoint_law(tmp_path, monkeypatch):
+    """`-var sharp 1`: cubes without the crust, through pair_style polyhedron/multipoint, the floor touched
+    at every corner beyond it; a few steps with a few cubes in a small box (a quick final porosity)."""
+    monkeypatch.chdir(tmp_path)
+    sim = dem.Simulation(screen=False, variables=[("shape", ["cube"]), ("sharp", ["1"]), ("N", ["5"]),
+                                                  ("settle", ["0.0002"]), ("L", ["0.01"])])
+    sim.file(SCRIPT)
+    assert sim.pair.style == "polyhedron/multipoint"
+    floor = next(f for f in sim.modify.fixes if f.id == "floor")
+    assert "multipoint" in " ".join(floor.args)
+    sim.close()
+
+
+def test_sharp_needs_a_polytope(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    sim = dem.Simulation(screen=False, variables=[("shape", ["sphere"]), ("sharp", ["1"])])
+    sim.file(SCRIPT)
+    assert sim.input.quit_status == 2 and sim.atom.natoms == 0
