@@ -65,31 +65,38 @@ class DumpVTP(DumpVTK):
                 block[mine] = table.rows[s].n1, table.rows[s].n2
         return half, block
 
-    def frame_text(self, frame):
-        # OVITO recognises the file by a Piece right after PolyData (so the frame's time is in the .pvd,
-        # not in field data) and reads only inline data arrays
-        arrays = _Arrays(self.binary, inline=True)
-        n = frame.count
-        idx = np.arange(n, dtype=np.int64)
-        out = ['<?xml version="1.0"?>\n',
-               '<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">\n',
-               '  <PolyData>\n',
-               f'    <Piece NumberOfPoints="{n}" NumberOfVerts="{n}" NumberOfLines="0" NumberOfStrips="0" '
-               f'NumberOfPolys="0">\n',
-               '      <PointData Scalars="radius">\n' if "radius" in self.fields else '      <PointData>\n']
+    def point_data(self, frame):
+        """The frame's point data: ([(name, array)], the PointData element's attributes)."""
+        items = []
         for field in self.fields:
             if field == "position":
                 continue
             data = frame.arrays[field]
             if field == "orientation":
                 data = np.asarray(data)[:, [1, 2, 3, 0]]        # w x y z -> OVITO's x y z w
-            out.append(arrays.element(VTP_NAMES[field], data, "        "))
+            items.append((VTP_NAMES[field], data))
         if len(self.sim.shapes):
             half, block = self.shape_columns(frame)
             for k, name in enumerate(("shapex", "shapey", "shapez")):
-                out.append(arrays.element(name, np.ascontiguousarray(half[:, k]), "        "))
+                items.append((name, np.ascontiguousarray(half[:, k])))
             for k, name in enumerate(("blockiness1", "blockiness2")):
-                out.append(arrays.element(name, np.ascontiguousarray(block[:, k]), "        "))
+                items.append((name, np.ascontiguousarray(block[:, k])))
+        return items, ' Scalars="radius"' if "radius" in self.fields else ""
+
+    def frame_text(self, frame):
+        # OVITO recognises the file by a Piece right after PolyData (so the frame's time is in the .pvd,
+        # not in field data) and reads only inline data arrays
+        arrays = _Arrays(self.binary, inline=True)
+        n = frame.count
+        idx = np.arange(n, dtype=np.int64)
+        items, attrs = self.point_data(frame)
+        out = ['<?xml version="1.0"?>\n',
+               '<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">\n',
+               '  <PolyData>\n',
+               f'    <Piece NumberOfPoints="{n}" NumberOfVerts="{n}" NumberOfLines="0" NumberOfStrips="0" '
+               f'NumberOfPolys="0">\n',
+               f'      <PointData{attrs}>\n']
+        out += [arrays.element(name, data, "        ") for name, data in items]
         out += ['      </PointData>\n',
                 '      <Points>\n',
                 arrays.element("Points", np.asarray(frame.arrays["position"], np.float64), "        "),

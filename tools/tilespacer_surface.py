@@ -136,7 +136,7 @@ def main(argv=None):
     ax1.invert_xaxis()                                 # as dem's pictures: seen along +y, -x to the right
     ax1.set_xlabel("x (mm)")
     ax1.set_ylabel("z (mm)")
-    ax1.set_title("free surface (highest point per 5 mm column)" if a.bin == 0.005 else "free surface")
+    ax1.set_title(f"free surface (highest point per {a.bin * 1000:g} mm column)")
     ax1.legend(fontsize=7, ncol=2, loc="lower left")
     ax2.plot(t, mag, lw=1)
     for x in aval:

@@ -2,7 +2,6 @@
 import numpy as np
 
 from dem.dump import Frame
-from dem.dump_vtk import _Arrays
 from dem.dump_vtp import DumpVTP
 from dem.errors import DemError
 
@@ -58,27 +57,6 @@ class DumpContacts(DumpVTP):
                   "type": values[:, 10].astype(np.int32), "ids": np.ascontiguousarray(ids)}
         return Frame(step, sim.update.time, sim.domain.lo, sim.domain.hi, arrays)
 
-    def frame_text(self, frame):
-        arrays = _Arrays(self.binary, inline=True)
-        n = frame.count
-        idx = np.arange(n, dtype=np.int64)
-        out = ['<?xml version="1.0"?>\n',
-               '<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">\n',
-               '  <PolyData>\n',
-               f'    <Piece NumberOfPoints="{n}" NumberOfVerts="{n}" NumberOfLines="0" NumberOfStrips="0" '
-               f'NumberOfPolys="0">\n',
-               '      <PointData Scalars="type" Vectors="force">\n']
-        for name in ("type", "normal", "force", "overlap", "ids"):
-            out.append(arrays.element(name, frame.arrays[name], "        "))
-        out += ['      </PointData>\n',
-                '      <Points>\n',
-                arrays.element("Points", frame.arrays["position"], "        "),
-                '      </Points>\n',
-                '      <Verts>\n',
-                arrays.element("connectivity", idx, "        "),
-                arrays.element("offsets", idx + 1, "        "),
-                '      </Verts>\n',
-                '    </Piece>\n',
-                '  </PolyData>\n',
-                '</VTKFile>\n']
-        return "".join(out)
+    def point_data(self, frame):
+        return ([(name, frame.arrays[name]) for name in ("type", "normal", "force", "overlap", "ids")],
+                ' Scalars="type" Vectors="force"')
