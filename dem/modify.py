@@ -11,6 +11,7 @@ class Modify:
         self.fixes = []
         self.by_stage = {s: [] for s in Stage}
         self.after_step = []
+        self.rebuild_requests = []
         self.restart_states = {}     # fix id -> state read from a restart, given to the fix of that id
 
     def add_fix(self, args):
@@ -63,6 +64,8 @@ class Modify:
         self.integrators = self.by_stage[Stage.INTEGRATE]
         # called after each complete step, before its output (fix python/every)
         self.after_step = [f for f in self.fixes if hasattr(f, "after_step")]
+        # asked at the start of each step whether the neighbor list must rebuild (fix insert)
+        self.rebuild_requests = [f for f in self.fixes if hasattr(f, "wants_rebuild")]
 
     def setup(self):
         for fix in self.fixes:

@@ -55,7 +55,10 @@ class Neighbor:
 
     # ----- per step ------------------------------------------------------------------------------
     def decide(self, step):
-        if self.force_rebuild:
+        requested = False
+        for fix in self.sim.modify.rebuild_requests:     # every one is asked: it may draw and test
+            requested = fix.wants_rebuild(step) or requested
+        if self.force_rebuild or requested:
             return True
         since = step - self.last_build
         if since < self.delay or since % self.every:

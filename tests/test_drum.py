@@ -180,19 +180,21 @@ def test_bed_centrifuges_at_froude_3(bed):
 def test_bed_does_not_centrifuge_at_5rpm(bed):
     """At 5 rpm (Fr = 0.0014) the bed's lower part turns with the drum, tilting the free surface up,
     but nothing is carried over the top. After 0.6 s (0.05 turn, 18 degrees) the surface has tilted by
-    15 degrees (measured, three seeds) with the drum: the bed has not reached its repose angle yet (25
-    degrees, from 1.2 s on, when avalanches start).
-    Measured, insertion seeds 11 (this bed) / 12 / 13: angle 15.10 / 14.91 / 15.24 degrees, asserted
-    15.1 +- 1 (5 times the seeds' spread, and the resolution of the surface fit, one bin's height
-    step: see test_surface_fit_recovers_a_tilted_surface); a surface at the repose angle (25) or one
-    that did not follow the drum (0) is 10 degrees or more off. Co-rotating fraction 0.943 / 0.997 /
-    0.991, asserted > 0.9 (the lowest seed less 15 particles of 350)."""
+    about 16 degrees with the drum: the bed has not reached its repose angle yet (25 degrees, from 1.2 s
+    on, when avalanches start).
+    Measured over 16 beds (insertion seeds 11-18, each with fix insert rebuilding the neighbor list at
+    every insertion step (the old schedule) and only when a particle goes in (the new one): round-off
+    makes them different beds): angle 13.1-18.4 degrees, mean 16.0, standard deviation 1.7; asserted
+    16 +- 5 (3 standard deviations); a surface at the repose angle (25) or one that did not follow the
+    drum (0) is outside. Co-rotating fraction 0.954-1.000 in 15 beds, 0.726 in one (old code, seed 16:
+    part of the bed slid on the wall); asserted > 0.6, where a bed that does not follow the drum has
+    next to none."""
     sim = _rotate(bed, "rpm 5")
     sim.run(40000)
     assert sim.thermo_keyword("c_co[3]") == 0.0        # nobody at the top of the drum
-    assert sim.thermo_keyword("c_co") > 0.9            # the passive region turns with the drum
+    assert sim.thermo_keyword("c_co") > 0.6            # the passive region turns with the drum
     angle = sim.thermo_keyword("c_rep")
-    assert angle == pytest.approx(15.1, abs=1.0)
+    assert angle == pytest.approx(16.0, abs=5.0)
 
 
 # ----- bookkeeping -----------------------------------------------------------------------------------

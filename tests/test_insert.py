@@ -110,6 +110,30 @@ def test_schedule_rate_and_rebuild_steps():
     assert changes == {0: (30, 0), 50: (30, 50), 100: (30, 100), 150: (10, 150)}
 
 
+def test_no_rebuild_while_nothing_fits():
+    """A slot that holds one sphere, kept by it (no gravity, at rest): the four others are drawn and
+    tested at every step (`every 1`), none fits, and the neighbor list is not rebuilt for them: the only
+    builds are the setup's and the one that inserted the first sphere."""
+    sim = dem.Simulation(screen=False)
+    sim.commands("""
+        boundary p p f
+        region box block 0 0.01 0 0.01 0 0.05
+        create_box 1 box
+        region slot block 0.0038 0.0062 0.0038 0.0062 0.0448 0.0472
+        pair_style sphere
+        pair_coeff * * kn 1e4 en 0.5
+        fix integ all nve/sphere
+        fix ins all insert 3 slot count 5 radius 0.001 density 2500
+        timestep 1e-5
+        thermo 0
+    """)
+    sim.run(200)
+    fix = sim.modify.find("ins")
+    assert sim.atom.natoms == 1 and len(fix.pending) == 4
+    assert fix.attempts == 5 + 4 * 199              # the four were tried at every later step
+    assert sim.neighbor.nbuilds == 2                # setup, and step 0 (the first sphere)
+
+
 def test_retry_when_region_is_full():
     """A region that holds one sphere at a time: the others are retried at later insertion steps, and
     get in only after gravity has moved the previous ones out of the way."""

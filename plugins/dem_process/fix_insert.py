@@ -52,7 +52,10 @@ class FixInsert(Fix):
     anything (existing particles, periodic images included, or a particle placed earlier in the same
     step) is not inserted now: it stays pending and is tried again at the next insertion step with a new
     random pose. Insertion steps come every M steps (default 1) from the first step of the next run (or
-    from step START); the fix forces a neighbor-list rebuild on those steps and inserts at PRE_EXCHANGE.
+    from step START). The candidates are drawn and tested when the step starts, as the neighbor list
+    decides whether to rebuild; only a step at which one of them fits forces a rebuild, and they are
+    added at its PRE_EXCHANGE (the same positions: nothing moves in between). A step at which none fits
+    leaves the list alone (a packing fed into a full layer retries every step without rebuilding).
 
     * `massrate Q`: a continuous feed of Q kg/s instead of all pending particles at each insertion step
       (not with `per`). At an insertion step at time t, the pending particles are taken in the order
@@ -63,8 +66,7 @@ class FixInsert(Fix):
       taken by time t (until the count is reached). A particle refused for overlap stays first in line
       and is retried at the next insertion step; the target is cumulative, so a feed held back by a
       full region catches up once there is room. Insertion steps at which the feed has nothing to take
-      are skipped without a neighbor-list rebuild (a slow feed with `every 1` rebuilds only when a
-      particle is due).
+      draw nothing (a slow feed with `every 1` rebuilds only when a particle is due and fits).
     * `count N`: insert N particles; `volfrac PHI`: insert particles until their volume reaches PHI times
       the region volume (the sizes are drawn up front, so the number is known at once).
     * Sizes: `radius` (default 0.5, see `create_atoms`): one size, `uniform RMIN RMAX`, `gaussian MEAN SD`
@@ -98,7 +100,7 @@ class FixInsert(Fix):
     """
 
     style = "insert"
-    stages = Stage.PRE_EXCHANGE | Stage.END_OF_STEP
+    stages = Stage.PRE_EXCHANGE
     usage = ("SEED REGION-ID count N | volfrac PHI [every M] [per K | massrate Q] [start STEP] [radius ...] "
              "[shape NAME [scale ...] | mix NAME1 W1 ... [fractions mass|number]] [density RHO] [type T] "
              "[v VX VY VZ] [omega WX WY WZ] [orient random|fixed]")
@@ -167,6 +169,7 @@ class FixInsert(Fix):
         self.t0 = None               # time of the first insertion step (massrate)
         self._masses = None
         self._mass_in = None         # cached inserted_mass()
+        self._ready = None           # the candidates that fit, from wants_rebuild to this step's PRE_EXCHANGE
 
     # ----- parsing --------------------------------------------------------------------------------
     def _keywords(self, words, what):
@@ -288,24 +291,21 @@ class FixInsert(Fix):
             self.next_step = step if self.start is None else max(step, self.start)
         if len(self.pending) and self.next_step <= step:
             self.next_step = step
-            self.sim.neighbor.force_rebuild = True
+        self._ready = None
 
-    def end_of_step(self):
-        up = self.sim.update
-        if len(self.pending) and self.next_step == up.ntimestep + 1:
-            if self.massrate is not None and self.t0 is not None and \
-                    self.massrate * (up.time + up.dt - self.t0) < self.inserted_mass():
-                self.next_step += self.every    # the feed is ahead: nothing to take then, no rebuild
-                return
-            self.sim.neighbor.force_rebuild = True
+    def wants_rebuild(self, step):
+        """Asked by the neighbor list at the start of every step (Neighbor.decide): on an insertion step,
+        draws and tests the candidates; a rebuild only when one of them fits (inserted at PRE_EXCHANGE)."""
+        if not len(self.pending) or self.next_step is None or step < self.next_step:
+            return False
+        self.next_step = step + self.every
+        self._ready = self._test(step)
+        return self._ready is not None
 
     def pre_exchange(self):
-        sim = self.sim
-        step = sim.update.ntimestep
-        if not len(self.pending) or self.next_step is None or step < self.next_step:
-            return
-        self.next_step = step + self.every
-        self.insert(step)
+        ready, self._ready = self._ready, None
+        if ready is not None:
+            self._insert(*ready)
 
     def masses(self):
         """Masses of all the drawn particles (pending or not), in draw order."""
@@ -335,11 +335,13 @@ class FixInsert(Fix):
         k = int(np.searchsorted(before, self.massrate * (time - self.t0), side="right"))
         return self.pending[:k]
 
-    def insert(self, step):
+    def _test(self, step):
+        """Draws this insertion step's candidates and tests them (all ranks agree); returns what
+        _insert needs when at least one fits, else None (they stay pending)."""
         sim, atom, dom = self.sim, self.sim.atom, self.sim.domain
         take = self._take()
         if not len(take):
-            return
+            return None
         k = len(take)
         radius = self.radii[take]
         # every rank draws the same candidates from the same stream
@@ -360,18 +362,24 @@ class FixInsert(Fix):
         _fix_insert.clash(np.zeros((0, 3)), np.zeros(0), 0, x, radius, k, dom.lo, dom.prd, periodic, True,
                           reject)
         ok = reject == 0
+        if not ok.any():
+            return None
+        return step, take, ok, x, quat
+
+    def _insert(self, step, take, ok, x, quat):
+        sim, atom = self.sim, self.sim.atom
+        k = len(take)
         chosen = take[ok]
         nnew = len(chosen)
-        if nnew:
-            first = atom.max_tag + 1
-            tags = first + np.arange(nnew, dtype=np.int64)
-            mine = sim.comm.owned_mask(x[ok])
-            self._add(chosen[mine], x[ok][mine], quat[ok][mine], tags[mine])
-            atom.max_tag = first + nnew - 1      # the same on every rank
-            atom.natoms += nnew
-            self.inserted += nnew
-            self.pending = np.concatenate([take[~ok], self.pending[k:]])
-            self._mass_in = None
+        first = atom.max_tag + 1
+        tags = first + np.arange(nnew, dtype=np.int64)
+        mine = sim.comm.owned_mask(x[ok])
+        self._add(chosen[mine], x[ok][mine], quat[ok][mine], tags[mine])
+        atom.max_tag = first + nnew - 1      # the same on every rank
+        atom.natoms += nnew
+        self.inserted += nnew
+        self.pending = np.concatenate([take[~ok], self.pending[k:]])
+        self._mass_in = None
         if not len(self.pending) and not self.done_logged:
             self.done_logged = True
             sim.print(f"fix {self.id} insert: all {self.inserted} particles inserted at step {step} "
