@@ -55,3 +55,16 @@ def test_sharp_needs_a_polytope(tmp_path, monkeypatch):
     sim = dem.Simulation(screen=False, variables=[("shape", ["sphere"]), ("sharp", ["1"])])
     sim.file(SCRIPT)
     assert sim.input.quit_status == 2 and sim.atom.natoms == 0
+
+
+def test_insertion_layer_thickness(tmp_path, monkeypatch):
+    """`-var layer T`: the insertion layer is T equivalent diameters thick, its top 1.2 d under the box top
+    (3D crosses of aspect 8 have a bounding diameter of 2.34 d: the default 2.3 d leaves them no room)."""
+    monkeypatch.chdir(tmp_path)
+    sim = dem.Simulation(screen=False, variables=[("layer", ["3.3"]), ("N", ["2"]), ("settle", ["0.00001"]),
+                                                  ("L", ["0.01"])])
+    sim.file(SCRIPT)
+    lo, hi = sim.domain.regions["layer"].extent()
+    assert hi[2] - lo[2] == pytest.approx(3.3 * 0.003, rel=1e-12)
+    assert sim.domain.hi[2] - hi[2] == pytest.approx(1.2 * 0.003, rel=1e-12)
+    sim.close()

@@ -4,6 +4,7 @@ tools/pinacoid_plot.py."""
 import importlib.util
 import math
 import os
+import shutil
 
 import numpy as np
 
@@ -53,6 +54,10 @@ def test_pinacoid_packing_input_runs(tmp_path):
     assert math.isclose(tool.DEQ, deq, rel_tol=1e-12)
     tool.main([str(tmp_path / "tiny"), "-o", str(tmp_path / "fig.png")])
     assert (tmp_path / "fig.png").stat().st_size > 10000
+    for kind in ("profile", "rdf"):            # the copies kept in docs/data end in .txt
+        shutil.copy(tmp_path / f"tiny.{kind}.dat", tmp_path / f"kept.{kind}.txt")
+    tool.main([str(tmp_path / "kept"), "-o", str(tmp_path / "kept.png")])
+    assert (tmp_path / "kept.png").stat().st_size > 10000
 
 
 def test_pinacoid_packing_goes_on_from_a_settled_bed(tmp_path):

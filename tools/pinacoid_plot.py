@@ -5,7 +5,8 @@ along z and the pair correlation g(r), from the files the input writes.
     python tools/pinacoid_plot.py PREFIX [-o FIGURE.png] [--deq D]
 
 PREFIX.profile.dat (fix ave/profile: step time bin coord phi szz sxx syy count zs zd zt ztot ziso) and
-PREFIX.rdf.dat (fix ave/vector of compute rdf); the last block of each (the final average) is drawn.
+PREFIX.rdf.dat (fix ave/vector of compute rdf), or the same names ending in .txt (the copies kept in
+docs/data); the last block of each (the final average) is drawn.
 Heights are in d_eq (default 0.6484, the input's mean pinacoid, d_sph = 1). Hydrostatic reference:
 sigma_zz(z) = rho g integral_z^top phi dz (rho = g = 1), the weight of the solid above z per unit area.
 g(r): compute rdf normalises by the number density of the whole box, which is partly empty above the
@@ -13,6 +14,7 @@ bed; the curve is drawn divided by its mean over the outer quarter of its range 
 a shape, not the paper's absolute level, which is normalised on the packing).
 """
 import argparse
+import os
 
 import numpy as np
 
@@ -26,6 +28,12 @@ def last_block(path):
     a = np.atleast_2d(np.loadtxt(path, comments="#"))
     a = a[a[:, 0] == a[-1, 0]]
     return {n: a[:, k] for k, n in enumerate(names)}
+
+
+def data_file(prefix, kind):
+    """PREFIX.KIND.dat as the input writes it, else PREFIX.KIND.txt."""
+    dat = f"{prefix}.{kind}.dat"
+    return dat if os.path.exists(dat) else f"{prefix}.{kind}.txt"
 
 
 def hydrostatic(z, phi):
@@ -44,8 +52,8 @@ def main(argv=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    p = last_block(a.prefix + ".profile.dat")
-    g = last_block(a.prefix + ".rdf.dat")
+    p = last_block(data_file(a.prefix, "profile"))
+    g = last_block(data_file(a.prefix, "rdf"))
     z = p["coord"] / a.deq
     fig, ax = plt.subplots(1, 4, figsize=(15, 4.2))
     ax[0].plot(p["phi"], z, "k-")
