@@ -19,12 +19,13 @@ def test_pinacoid_packing_input_runs(tmp_path):
     / 80 and kn = rho V / (2 T_stiffness^2) (closed forms, to round-off). The solid fraction profile holds
     the particles' volume: over a profile spanning the whole column (zmax 30 d_eq; the short run is not
     settled), sum(phi) dz Lx^2 equals the volume of the pinacoids (the voxel count of compute porosity at
-    d_eq / 20 per voxel: 0.5 %). All outputs are written."""
+    d_eq / 20 per voxel: 0.5 %). All outputs are written; the profile is written once, at the end, so
+    it averages the whole window (`fall` 6.1 puts the window off the multiples of its length)."""
     cwd = os.getcwd()
     os.chdir(tmp_path)
     try:
         sim = dem.Simulation(screen=False, variables=[("N", ["60"]), ("Lx", ["3"]), ("soft", ["100"]),
-                                                      ("fall", ["6"]), ("damp", ["2"]), ("rest", ["2"]),
+                                                      ("fall", ["6.1"]), ("damp", ["2"]), ("rest", ["2"]),
                                                       ("out", ["tiny"]), ("zmax", ["30"])])
         sim.file(SCRIPT)
     finally:
@@ -43,6 +44,8 @@ def test_pinacoid_packing_input_runs(tmp_path):
     assert len(a) == 60
     dz = a[1, 3] - a[0, 3]
     assert a[-1, 3] + dz / 2 > sim.gather("x")[:, 2].max() + 0.5        # the profile spans every body
+    assert a[0, 0] == sim.update.ntimestep            # one block, written at the end: the whole window
+    assert len(np.loadtxt(tmp_path / "tiny.profile.dat")) == 60
     s = sim.gather("radius") / sim.shapes.rows[0].bounding_radius      # the scale of each pinacoid
     assert math.isclose(a[:, 4].sum() * dz * 9.0, (V * s ** 3).sum(), rel_tol=5e-3)
 
@@ -65,7 +68,7 @@ def test_pinacoid_packing_goes_on_from_a_settled_bed(tmp_path):
     T_inertia before averaging: same particles, the step goes on from the file's, every output again."""
     cwd = os.getcwd()
     os.chdir(tmp_path)
-    tiny = [("N", ["30"]), ("Lx", ["2.5"]), ("soft", ["100"]), ("fall", ["3"]), ("damp", ["1"]),
+    tiny = [("N", ["30"]), ("Lx", ["2.5"]), ("soft", ["100"]), ("fall", ["3.1"]), ("damp", ["1"]),
             ("rest", ["1"])]
     try:
         first = dem.Simulation(screen=False, variables=tiny + [("out", ["a"])])
@@ -81,6 +84,9 @@ def test_pinacoid_packing_goes_on_from_a_settled_bed(tmp_path):
                                             ** (1 / 3)) / again.update.dt)
     averaging = first.update.ntimestep - reader.update.ntimestep        # the same in both runs
     assert again.atom.natoms == 30 and averaging > 0
-    assert again.update.ntimestep - reader.update.ntimestep == steps_rest + averaging
+    # the rest ends on the next multiple of the window's length (where the averages are written)
+    rested = again.update.ntimestep - averaging
+    assert rested % averaging == 0 and 0 <= rested - (reader.update.ntimestep + steps_rest) < averaging
+    assert np.loadtxt(tmp_path / "b.profile.dat")[-1, 0] == again.update.ntimestep   # the whole window
     for name in ("b.profile.dat", "b.rdf.dat", "b.restart"):
         assert (tmp_path / name).exists(), name
