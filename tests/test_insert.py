@@ -110,12 +110,10 @@ def test_schedule_rate_and_rebuild_steps():
     assert changes == {0: (30, 0), 50: (30, 50), 100: (30, 100), 150: (10, 150)}
 
 
-def test_no_rebuild_while_nothing_fits():
-    """A slot that holds one sphere, kept by it (no gravity, at rest): the four others are drawn and
-    tested at every step (`every 1`), none fits, and the neighbor list is not rebuilt for them: the only
-    builds are the setup's and the one that inserted the first sphere."""
+def _slot(fixes):
+    """A box whose insertion region, a slot one sphere wide, holds one sphere of radius 1 mm at a time."""
     sim = dem.Simulation(screen=False)
-    sim.commands("""
+    sim.commands(f"""
         boundary p p f
         region box block 0 0.01 0 0.01 0 0.05
         create_box 1 box
@@ -123,10 +121,18 @@ def test_no_rebuild_while_nothing_fits():
         pair_style sphere
         pair_coeff * * kn 1e4 en 0.5
         fix integ all nve/sphere
-        fix ins all insert 3 slot count 5 radius 0.001 density 2500
+        {fixes}
         timestep 1e-5
         thermo 0
     """)
+    return sim
+
+
+def test_no_rebuild_while_nothing_fits():
+    """A slot that holds one sphere, kept by it (no gravity, at rest): the four others are drawn and
+    tested at every step (`every 1`), none fits, and the neighbor list is not rebuilt for them: the only
+    builds are the setup's and the one that inserted the first sphere."""
+    sim = _slot("fix ins all insert 3 slot count 5 radius 0.001 density 2500")
     sim.run(200)
     fix = sim.modify.find("ins")
     assert sim.atom.natoms == 1 and len(fix.pending) == 4
@@ -137,21 +143,9 @@ def test_no_rebuild_while_nothing_fits():
 def test_retry_when_region_is_full():
     """A region that holds one sphere at a time: the others are retried at later insertion steps, and
     get in only after gravity has moved the previous ones out of the way."""
-    sim = dem.Simulation(screen=False)
-    sim.commands("""
-        boundary p p f
-        region box block 0 0.01 0 0.01 0 0.05
-        create_box 1 box
-        region slot block 0.0038 0.0062 0.0038 0.0062 0.0448 0.0472
-        pair_style sphere
-        pair_coeff * * kn 1e4 en 0.5
-        fix integ all nve/sphere
-        fix g all gravity 9.81 vector 0 0 -1
+    sim = _slot("""fix g all gravity 9.81 vector 0 0 -1
         fix ins all insert 3 slot count 5 every 100 per 5 radius 0.001 density 2500
-        fix floor all wall/plane zplane 0 NULL kn 1e4 en 0.5
-        timestep 1e-5
-        thermo 0
-    """)
+        fix floor all wall/plane zplane 0 NULL kn 1e4 en 0.5""")
     sim.run(1)
     assert sim.atom.natoms == 1                     # the slot is one diameter wide: one at a time
     sim.run(19999)
