@@ -103,7 +103,7 @@ def _main(argv):
             sim.input.lines(sim.comm.bcast(sys.stdin.read() if sim.comm.me == 0 else None), name="<stdin>")
         else:
             sim.file(opts["in"])
-        return 0
+        return sim.input.quit_status or 0          # `quit N` sets the exit status
     except DemError as e:
         SIGNAL_STATE.depth += 1      # reporting the error: a signal now must not cut the report short
         return fatal(sim, e)

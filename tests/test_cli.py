@@ -32,6 +32,13 @@ def test_an_error_in_standard_input_names_its_line(tmp_path):
     assert out.returncode == 1 and "<stdin>:5:" in out.stderr and "Traceback" not in out.stderr
 
 
+def test_quit_sets_the_exit_status(tmp_path):
+    """`quit N` ends the script with exit status N, as the inputs' checks of their -var words need."""
+    out = dem_run(["-log", "none"], stdin='print "checked"\nquit 2\nprint never\n', cwd=tmp_path)
+    assert out.returncode == 2 and "checked" in out.stdout and "never" not in out.stdout
+    assert dem_run(["-log", "none"], stdin="quit\n", cwd=tmp_path).returncode == 0
+
+
 def test_version(tmp_path):
     out = dem_run(["--version"], cwd=tmp_path)
     assert out.returncode == 0 and out.stdout.strip() == f"dem {dem.__version__}"

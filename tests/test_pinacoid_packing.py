@@ -90,3 +90,37 @@ def test_pinacoid_packing_goes_on_from_a_settled_bed(tmp_path):
     assert np.loadtxt(tmp_path / "b.profile.dat")[-1, 0] == again.update.ntimestep   # the whole window
     for name in ("b.profile.dat", "b.rdf.dat", "b.restart"):
         assert (tmp_path / name).exists(), name
+
+
+def test_pinacoid_packing_stiffens_a_softer_bed(tmp_path):
+    """`-var stiffen S0` raises the contact stiffness of a bed settled with `soft` S0 to the run's `soft` in
+    ten geometric steps of 0.1 T_inertia each, then rests it: at the end the pair and the floor have the
+    run's kn (closed form, to round-off), and the ten steps come before the rest. Without `prepared 1`
+    the word is refused with a message (there is no bed to stiffen)."""
+    cwd = os.getcwd()
+    os.chdir(tmp_path)
+    tiny = [("N", ["30"]), ("Lx", ["2.5"]), ("fall", ["3.1"]), ("damp", ["1"]), ("rest", ["1"])]
+    try:
+        dem.Simulation(screen=False, variables=tiny + [("soft", ["100"]), ("out", ["a"])]).file(SCRIPT)
+        reader = dem.Simulation(screen=False)
+        reader.command("read_restart a.restart")
+        stiff = dem.Simulation(screen=False, variables=tiny + [("soft", ["10"]), ("stiffen", ["100"]),
+                                                               ("out", ["b"]), ("prepared", ["1"]),
+                                                               ("from", ["a.restart"])])
+        stiff.file(SCRIPT)
+        refused = dem.Simulation(screen=False, variables=tiny + [("stiffen", ["100"])])
+        refused.file(SCRIPT)
+    finally:
+        os.chdir(cwd)
+    V = (0.5 ** 1.5) / 6 * (3 - 1 / math.tan(math.pi / 3))
+    tin = math.sqrt((6 * V / math.pi) ** (1 / 3))
+    kn = V / (2 * (tin / 400 * math.sqrt(10)) ** 2)
+    assert math.isclose(stiff.pair.table[1, 1, dem_contact.KN], kn, rel_tol=1e-12)
+    assert math.isclose(stiff.modify.find("floor").law["kn"], kn, rel_tol=1e-12)
+    dt = stiff.update.dt
+    nlast = 100 * round(0.25 * tin / dt / 100)                    # the averaging window (rest 1)
+    rest_end = stiff.update.ntimestep - nlast
+    stiffened = reader.update.ntimestep + 10 * round(0.1 * tin / dt)
+    # the rest starts after the ten stages and runs up to the next multiple of the window's length
+    assert rest_end % nlast == 0 and 0 <= rest_end - (stiffened + round(0.75 * tin / dt)) < nlast
+    assert refused.input.quit_status == 2 and refused.atom.natoms == 0

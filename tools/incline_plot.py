@@ -9,11 +9,12 @@ against the inertial number next to the paper's fits.
 
 Each PREFIX is one run (one tilt): PREFIX.profile.dat, PREFIX.phi.dat (fix ave/profile, the last block:
 the final average), PREFIX.series.dat (fix print/series) and PREFIX.summary.txt (theta, d_eq...), as the
-input writes them. Heights are from the floor, in d_eq. The bulk is the band from 5 d_eq (the paper's
-"z > 5 d_eq") to 2 d_eq below the free surface, the surface being the highest bin whose solid fraction
-is at least half the largest one of the profile. sigma_zz is drawn as computed (contacts, Moreau) and
-with its kinetic part rho phi T_zz added, which steady flow balances against the weight of the layer above
-(rho g cos(theta) times the solid above z). `--table` prints the bulk values as a Markdown table.
+input writes them, or the .dat files' copies ending in .txt (as kept in docs/data). Heights are from the
+floor, in d_eq. The bulk is the band from 5 d_eq (the paper's "z > 5 d_eq") to 2 d_eq below the free
+surface, the surface being the highest bin whose solid fraction is at least half the largest one of the
+profile. sigma_zz is drawn as computed (contacts, Moreau) and with its kinetic part rho phi T_zz added,
+which steady flow balances against the weight of the layer above (rho g cos(theta) times the solid above
+z). `--table` prints the bulk values as a Markdown table.
 
 Flow or not, from the kinetic energy series: "arrested" when the mean downslope velocity of the layer is
 below 0.05 sqrt(g d_eq) at the end, "accelerating" / "slowing" when its kinetic energy grows or falls by
@@ -30,19 +31,12 @@ import argparse
 
 import numpy as np
 
+from dem.tools.profile_files import data_file, last_block
+
 BULK_FROM = 5.0          # d_eq above the floor (Descantes sec. 3.2.2)
 BELOW_SURFACE = 2.0      # d_eq: the top of the bulk band under the free surface
 TREND_FROM = 10.0        # T_inertia after the tilt: the kinetic energy's trend is fitted from there on
 PINACOID_VOLUME = 0.5 ** 1.5 / 6 * (3 - 1 / np.tan(np.pi / 3))   # d_sph^3, the input's V
-
-
-def last_block(path):
-    """Rows of the last step in a series file, as a dict of columns."""
-    with open(path) as f:
-        names = [line for line in f if line.startswith("# step")][-1][1:].split()
-    a = np.atleast_2d(np.loadtxt(path, comments="#"))
-    a = a[a[:, 0] == a[-1, 0]]
-    return {n: a[:, k] for k, n in enumerate(names)}
 
 
 def nfreq_of(path):
@@ -83,9 +77,9 @@ def run(prefix):
     """One run's profiles (heights in d_eq, velocities in sqrt(g d_eq), stresses in rho g d_sph) and bulk
     values."""
     s = summary(prefix + ".summary.txt")
-    p = last_block(prefix + ".profile.dat")
-    phi = last_block(prefix + ".phi.dat")["phi"]
-    ts = series(prefix + ".series.dat")
+    p = last_block(data_file(prefix, "profile"))
+    phi = last_block(data_file(prefix, "phi"))["phi"]
+    ts = series(data_file(prefix, "series"))
     deq = s["deq"]
     z = p["coord"] / deq
     dz = (z[1] - z[0]) * deq
@@ -148,15 +142,15 @@ def run(prefix):
     else:
         out["verdict"] = "steady"
     # does the profiles' last block average the whole window? (blocks are written on multiples of Nfreq)
-    nfreq = nfreq_of(prefix + ".profile.dat")
+    nfreq = nfreq_of(data_file(prefix, "profile"))
     step_end = int(ts["step"][-1])
-    step_prof = int(last_block(prefix + ".profile.dat")["step"][0])
+    step_prof = int(last_block(data_file(prefix, "profile"))["step"][0])
     dt = float((t[-1] - t[0]) / (ts["step"][-1] - ts["step"][0]))
     window_steps = int(round(t_avg / dt))
     covered = min(nfreq or window_steps, step_prof - (step_end - window_steps))
     out["profile_window"] = covered / window_steps
     if step_prof != step_end or covered < window_steps:
-        print(f"WARNING: {prefix}.profile.dat: the last block (step {step_prof}) averages {covered} of the "
+        print(f"WARNING: {data_file(prefix, 'profile')}: the last block (step {step_prof}) averages {covered} of the "
               f"window's {window_steps} steps (the run ends at step {step_end}; blocks are written on "
               f"multiples of Nfreq = {nfreq}): the profiles are not the average of the last "
               f"{s['avg']:g} T_inertia")

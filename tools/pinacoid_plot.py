@@ -14,26 +14,12 @@ bed; the curve is drawn divided by its mean over the outer quarter of its range 
 a shape, not the paper's absolute level, which is normalised on the packing).
 """
 import argparse
-import os
 
 import numpy as np
 
+from dem.tools.profile_files import data_file, last_block
+
 DEQ = (6 * (0.5 ** 1.5 / 6 * (3 - 1 / np.tan(np.pi / 3))) / np.pi) ** (1 / 3)   # as the input
-
-
-def last_block(path):
-    """Rows of the last step in a series file, as a dict of columns."""
-    with open(path) as f:
-        names = [line for line in f if line.startswith("# step")][-1][1:].split()
-    a = np.atleast_2d(np.loadtxt(path, comments="#"))
-    a = a[a[:, 0] == a[-1, 0]]
-    return {n: a[:, k] for k, n in enumerate(names)}
-
-
-def data_file(prefix, kind):
-    """PREFIX.KIND.dat as the input writes it, else PREFIX.KIND.txt."""
-    dat = f"{prefix}.{kind}.dat"
-    return dat if os.path.exists(dat) else f"{prefix}.{kind}.txt"
 
 
 def hydrostatic(z, phi):
