@@ -150,8 +150,8 @@ def run(prefix):
     covered = min(nfreq or window_steps, step_prof - (step_end - window_steps))
     out["profile_window"] = covered / window_steps
     if step_prof != step_end or covered < window_steps:
-        print(f"WARNING: {data_file(prefix, 'profile')}: the last block (step {step_prof}) averages {covered} of the "
-              f"window's {window_steps} steps (the run ends at step {step_end}; blocks are written on "
+        print(f"WARNING: {data_file(prefix, 'profile')}: the last block (step {step_prof}) averages {covered} "
+              f"of the window's {window_steps} steps (the run ends at step {step_end}; blocks are written on "
               f"multiples of Nfreq = {nfreq}): the profiles are not the average of the last "
               f"{s['avg']:g} T_inertia")
     return out
