@@ -501,11 +501,11 @@ def test_drum_cubes_input_runs(tmp_path):
     assert (tmp_path / "drum_cubes_final.png").exists()
 
 
-@pytest.mark.parametrize("shape, n", [("cross3d", 40), ("sphere", 100)])
+@pytest.mark.parametrize("shape, n", [("cross3d", 40), ("sphere", 100), ("cube", 60)])
 def test_main_drum_input_runs(tmp_path, monkeypatch, shape, n):
-    """inputs/in.drum (the README's main job), shortened: crosses (its default) and spheres are inserted,
-    settle on the drum wall and turn; every output is written; the final picture (the mid-plane section) is
-    not the last periodic one; the script's own shape check names a wrong shape."""
+    """inputs/in.drum (the README's main job), shortened: crosses (its default), spheres and a convex shape
+    are inserted, settle on the drum wall and turn; every output is written; the final picture (the
+    mid-plane section) is not the last periodic one."""
     import os
     script = os.path.join(os.path.dirname(__file__), os.pardir, "inputs", "in.drum")
     monkeypatch.chdir(tmp_path)
@@ -537,7 +537,7 @@ def test_main_drum_input_refuses_an_unknown_shape(tmp_path, monkeypatch):
     import os
     script = os.path.join(os.path.dirname(__file__), os.pardir, "inputs", "in.drum")
     monkeypatch.chdir(tmp_path)
-    sim = dem.Simulation(screen=False, variables=[("shape", ["cube"])])
+    sim = dem.Simulation(screen=False, variables=[("shape", ["cone"])])
     sim.file(script)
     assert sim.input.quit_status == 2 and sim.atom.natoms == 0
 
