@@ -25,7 +25,7 @@ def format_number(value):
 
 _TOKEN = re.compile(r"""\s*(?:
     (?P<num>(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)
-  | (?P<name>[A-Za-z_][A-Za-z0-9_]*(?:\[\d+\])?)
+  | (?P<name>[A-Za-z_][A-Za-z0-9_]*(?:\[\w+\])?)
   | (?P<text>'[^']*')
   | (?P<op>==|!=|<=|>=|&&|\|\||\|\^|[-+*/^%<>!(),])
 )""", re.VERBOSE)

@@ -533,6 +533,22 @@ def test_main_drum_input_runs(tmp_path, monkeypatch, shape, n):
     assert (tmp_path / "a_regimes.png").stat().st_size > 0
 
 
+def test_main_drum_input_stops_when_the_fill_is_too_short(tmp_path, monkeypatch):
+    """1500 cubes (the default for 12 mm) cannot all go in within 1000 steps: the job stops after the fill
+    (quit 2) and says how many are left (fix insert's pending count in the script's expression), rather than
+    settling half a bed."""
+    import os
+    script = os.path.join(os.path.dirname(__file__), os.pardir, "inputs", "in.drum")
+    monkeypatch.chdir(tmp_path)
+    sim = dem.Simulation(screen=False, log="log.dem", variables=[("shape", ["cube"]), ("W", ["0.012"]),
+                                                                 ("fill", ["0.002"])])
+    sim.file(script)
+    left = sim.modify.find("ins").thermo()["pending"]
+    sim.close()
+    assert sim.input.quit_status == 2 and left > 0 and sim.update.ntimestep == 1000
+    assert f"{left} of the 1500 particles are still to go in" in open("log.dem").read()
+
+
 def test_main_drum_input_refuses_an_unknown_shape(tmp_path, monkeypatch):
     import os
     script = os.path.join(os.path.dirname(__file__), os.pardir, "inputs", "in.drum")
