@@ -619,3 +619,20 @@ def test_carried_group_must_be_the_drums_alone(integ, fixgroup, message):
     sim.commands(CARRY.format(LAW=LAW, R=R, integ=integ, fixgroup=fixgroup))
     with pytest.raises(DemError, match=message):
         sim.run(1)
+
+
+def test_drum_coordination_plot(tmp_path):
+    """tools/drum_coordination.py reads the regime tables kept in docs/data (Fig. 25 for several shapes)."""
+    import importlib.util
+    import os
+    root = os.path.join(os.path.dirname(__file__), os.pardir)
+    spec = importlib.util.spec_from_file_location("drum_coordination", os.path.join(root, "tools", "drum_coordination.py"))
+    tool = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tool)
+    crosses = os.path.join(root, "docs", "data", "drum_sweep", "regimes.txt")
+    t = tool.read_table(crosses)
+    assert list(t["rpm"]) == [5, 20, 42, 80, 150, 200, 250] and t["coordination"][0] == 4.06
+    out = tmp_path / "c.png"
+    tool.main([f"{crosses}:3D crosses", os.path.join(root, "docs", "data", "drum_sweep", "spheres", "regimes.txt"),
+               "-o", str(out)])
+    assert out.stat().st_size > 0

@@ -1,0 +1,45 @@
+"""Part III Fig. 25 for several shapes: the time-averaged coordination number against the rotation rate,
+from the regime tables that dem-drum-analysis prints (docs/data/drum_sweep/**/regimes.txt).
+
+    python tools/drum_coordination.py TABLE:LABEL [TABLE:LABEL ...] [-o drum_coordination.png]
+
+A table has a header line (rpm ... coordination ...) and one row per rate.
+"""
+import argparse
+
+import numpy as np
+
+
+def read_table(path):
+    """{column: array} of a whitespace table with a header line (the regime column is text)."""
+    with open(path) as f:
+        head = f.readline().split()
+        rows = [line.split() for line in f if line.strip()]
+    return {name: np.array([float(r[k]) for r in rows]) for k, name in enumerate(head) if name != "regime"}
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("tables", nargs="+", help="TABLE:LABEL")
+    p.add_argument("-o", "--output", default="drum_coordination.png")
+    a = p.parse_args(argv)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for item in a.tables:
+        path, _, label = item.partition(":")
+        t = read_table(path)
+        order = np.argsort(t["rpm"])
+        ax.plot(t["rpm"][order], t["coordination"][order], "o-", label=label or path)
+    ax.set_xlabel("rotation rate (rpm)")
+    ax.set_ylabel("time-averaged coordination number")
+    ax.set_title("Part III Fig. 25 with dem's runs (the last half of each)")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(a.output, dpi=100)
+    print(a.output)
+
+
+if __name__ == "__main__":
+    main()
