@@ -19,10 +19,11 @@ import sys
 import tempfile
 
 import dem
+from dem.shapes import pinacoid_volume
 
-# inputs/in.pinacoid_packing, Table 1 (units of d_sph, rho = g = 1)
+# inputs/in.pinacoid_packing, Table 1 (units of d_sph, rho = g = 1): the mean pinacoid, L = G = E
 E = 1 / math.sqrt(2)
-V = E ** 3 / 6 * (3 - 1 / math.tan(math.pi / 3))
+V = pinacoid_volume(E, E, E, 60.0)
 T_INERTIA = math.sqrt((6 * V / math.pi) ** (1 / 3))
 
 

@@ -630,7 +630,7 @@ def test_drum_coordination_plot(tmp_path):
     tool = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(tool)
     crosses = os.path.join(root, "docs", "data", "drum_sweep", "regimes.txt")
-    t = tool.read_table(crosses)
+    t = tool.read_regimes(crosses)
     assert list(t["rpm"]) == [5, 20, 42, 80, 150, 200, 250] and t["coordination"][0] == 4.06
     out = tmp_path / "c.png"
     tool.main([f"{crosses}:3D crosses", os.path.join(root, "docs", "data", "drum_sweep", "spheres", "regimes.txt"),

@@ -1,5 +1,6 @@
 """Part III Fig. 25 for several shapes: the time-averaged coordination number against the rotation rate,
-from the regime tables that dem-drum-analysis prints (docs/data/drum_sweep/**/regimes.txt).
+from the regime tables that dem-drum-analysis prints (docs/data/drum_sweep/**/regimes.txt; read by
+dem.tools.drum_analysis.read_regimes).
 
     python tools/drum_coordination.py TABLE:LABEL [TABLE:LABEL ...] [-o drum_coordination.png]
 
@@ -9,13 +10,7 @@ import argparse
 
 import numpy as np
 
-
-def read_table(path):
-    """{column: array} of a whitespace table with a header line (the regime column is text)."""
-    with open(path) as f:
-        head = f.readline().split()
-        rows = [line.split() for line in f if line.strip()]
-    return {name: np.array([float(r[k]) for r in rows]) for k, name in enumerate(head) if name != "regime"}
+from dem.tools.drum_analysis import read_regimes
 
 
 def main(argv=None):
@@ -29,7 +24,7 @@ def main(argv=None):
     fig, ax = plt.subplots(figsize=(6, 4))
     for item in a.tables:
         path, _, label = item.partition(":")
-        t = read_table(path)
+        t = read_regimes(path)
         order = np.argsort(t["rpm"])
         ax.plot(t["rpm"][order], t["coordination"][order], "o-", label=label or path)
     ax.set_xlabel("rotation rate (rpm)")

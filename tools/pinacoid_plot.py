@@ -17,9 +17,10 @@ import argparse
 
 import numpy as np
 
+from dem.shapes import pinacoid_volume
 from dem.tools.profile_files import data_file, last_block
 
-DEQ = (6 * (0.5 ** 1.5 / 6 * (3 - 1 / np.tan(np.pi / 3))) / np.pi) ** (1 / 3)   # as the input
+DEQ = (6 * pinacoid_volume(*3 * [0.5 ** 0.5], 60.0) / np.pi) ** (1 / 3)   # the input's mean pinacoid
 
 
 def hydrostatic(z, phi):

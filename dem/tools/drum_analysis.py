@@ -52,6 +52,19 @@ def time_averaged_speed(path, radius, omega, last_half=True):
     return np.array([acc[i] / count[i] for i in acc]) / (omega * radius)
 
 
+REGIMES_HEADER = "rpm  corotating  carried  free_flight  vm     vm_cv  angle  angle_std  coordination  regime"
+
+
+def read_regimes(path):
+    """The regime table that main prints (kept as docs/data/drum_sweep/**/regimes.txt): {column: array},
+    the regime names as a list."""
+    with open(path) as f:
+        head = f.readline().split()
+        rows = [line.split() for line in f if line.strip()]
+    return {name: [r[k] for r in rows] if name == "regime" else np.array([float(r[k]) for r in rows])
+            for k, name in enumerate(head)}
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--rpm", nargs="+", type=float, required=True)
@@ -107,7 +120,7 @@ def main(argv=None):
         if lacking:
             print(f"no regimes: the series lack the columns {' '.join(lacking)} (inputs/in.drum writes them)")
     if a.h5 and not lacking:
-        print("rpm  corotating  carried  free_flight  vm     vm_cv  angle  angle_std  coordination  regime")
+        print(REGIMES_HEADER)
         found = {}
         for rpm, series, h5 in zip(a.rpm, a.series, a.h5):
             m = drum_regimes.markers(series, h5, a.radius)
