@@ -2,7 +2,7 @@
 """The particle arrays as kernels see them: one struct of pointers (Particles) into the atom store,
 rebuilt at every kernel call (arrays grow and move: never kept across calls). Row i of a 3-vector field
 is x[3 i:3 i + 3]; ghosts follow the owned rows. `stress` (9 per row), `ctypes` (5 per row) and `ccount`
-(1 per row) are the contact tallies of dem/tally.py, NULL unless an analysis style asked for them."""
+(2 per row: pair contacts, contact points) are the contact tallies of dem/tally.py, NULL unless an analysis style asked for them."""
 
 cdef struct Particles:
     int nlocal
@@ -23,11 +23,14 @@ cdef struct Particles:
     double* ccount
 
 
-cdef inline void count_contact(const Particles* P, int i, int j) noexcept nogil:
-    """One more pair contact for particles i and j in the `count` tally (dem/tally.py), when asked for."""
+cdef inline void count_contact(const Particles* P, int i, int j, int npoints) noexcept nogil:
+    """One more pair contact, touching at npoints points, for particles i and j in the `count` tally
+    (dem/tally.py), when asked for."""
     if P.ccount != NULL:
-        P.ccount[i] += 1.0
-        P.ccount[j] += 1.0
+        P.ccount[2 * i] += 1.0
+        P.ccount[2 * j] += 1.0
+        P.ccount[2 * i + 1] += npoints
+        P.ccount[2 * j + 1] += npoints
 
 
 cdef class ParticleView:

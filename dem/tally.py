@@ -10,8 +10,10 @@ run without such a compute pays one pointer test per contact and nothing else.
   eq. 12), written by the shared law (dem_contact/apply.pxd) for every pair style and wall;
 * `types` (5 values): the particle's pair contacts by type: vertex/face, edge/edge, edge/face,
   face/face, with a sphere (only `pair_style polyhedron/multipoint` knows the types);
-* `count` (1 value): the particle's pair contacts (touching neighbours; a pair of composites or
-  polyhedra touching at several points counts once), written by every pair style.
+* `count` (2 values): the particle's pair contacts (touching neighbours; a pair of composites or
+  polyhedra touching at several points counts once) and their contact points (a glued pair: one per
+  touching pair of pieces; polyhedron/multipoint: the points of its contact types; spheres and convex
+  particles: 1 per contact), written by every pair style.
 
 Fields are zeroed with the forces before the pair style and the ghosts' parts are added to their owners
 with the forces (`clear`, `reverse`, called by Update.force_pass), so they describe the last force
@@ -19,7 +21,7 @@ evaluation like `f`. Wall fixes act after the pair style (POST_FORCE) and add to
 not act in the setup force pass of a run (so `run 0` tallies the pair contacts only)."""
 from .errors import DemError
 
-FIELDS = {"stress": ("tally_stress", 9), "types": ("tally_types", 5), "count": ("tally_count", 1)}
+FIELDS = {"stress": ("tally_stress", 9), "types": ("tally_types", 5), "count": ("tally_count", 2)}
 TYPE_NAMES = ("vertex_face", "edge_edge", "edge_face", "face_face", "sphere")
 
 

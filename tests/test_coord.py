@@ -5,7 +5,10 @@ Three bodies in a row, each overlapping its neighbour by 1 um (and nothing else)
 the middle body has 2 contacts, the two ends 1 each, so Z = 2 for the middle, 1 for the ends and 4/3 for
 all. These are counts, exact; a pair of polyhedra touching face to face (4 points) or of composites
 counts once. A floor under the row (wall/plane) adds its contacts to W and Z_walls only: one per body,
-one per touching component for the dumbbells (wall/plane counts a composite's component contacts)."""
+one per touching component for the dumbbells (wall/plane counts a composite's component contacts).
+`coord points` counts contact points instead: the same for spheres, convex bodies and the dumbbells of the
+row (one component pair touches), 4 per face/face contact of two cubes with polyhedron/multipoint, and 2
+for two dumbbells side by side (both component pairs touch)."""
 import pytest
 
 import dem
@@ -40,6 +43,8 @@ group middle id 2
 compute za all coord
 compute ze ends coord
 compute zm middle coord
+compute pa all coord points
+compute pm middle coord points
 timestep 1e-7
 thermo 0
 run 1
@@ -58,6 +63,32 @@ def test_coordination_of_groups(style):
     assert list(za.vector()) == pytest.approx([4 / 3, (4 + w) / 3, 2, w])   # 2 pair contacts
     assert list(zm.vector()) == [2.0, 2.0 + w, 1.0, w]                       # W: every wall contact
     assert list(ze.vector()) == [1.0, (2.0 + w) / 2, 1.0, w]
+    per = 4.0 if style == "polyhedron/multipoint" else 1.0          # points per contact
+    assert sim.computes["pm"].scalar() == 2.0 * per
+    assert list(sim.computes["pa"].vector()) == pytest.approx([4 / 3 * per, (4 * per + w) / 3, 2 * per, w])
+
+
+def test_points_of_composites_side_by_side():
+    """Two dumbbells side by side (1 um overlap across their length): one pair contact, two points."""
+    shape, what, _, half = STYLES["glued/convex"]
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""units si
+boundary f f f
+region box block -0.01 0.01 -0.01 0.01 -0.01 0.01
+create_box 1 box
+{shape}create_atoms 1 single 0 0 0 {what} density 2500
+create_atoms 1 single 0 {2 * half - OV!r} 0 {what} density 2500
+pair_style glued/convex
+pair_coeff * * kn 1e5 en 0.5 mu 0.3
+fix integ all nve/shape
+compute z all coord
+compute p all coord points
+timestep 1e-7
+thermo 0
+run 1
+""")
+    assert sim.computes["z"].scalar() == 1.0
+    assert sim.computes["p"].scalar() == 2.0
 
 
 def test_lattice_groups():

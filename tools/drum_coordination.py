@@ -4,7 +4,9 @@ dem.tools.drum_analysis.read_regimes).
 
     python tools/drum_coordination.py TABLE:LABEL [TABLE:LABEL ...] [-o drum_coordination.png]
 
-A table has a header line (rpm ... coordination ...) and one row per rate.
+A table has a header line (rpm ... coordination ...) and one row per rate. Where it also has the
+coordination per contact point (coord_points: crosses touching at two beams count 2), that is drawn dashed
+in the same colour.
 """
 import argparse
 
@@ -26,7 +28,11 @@ def main(argv=None):
         path, _, label = item.partition(":")
         t = read_regimes(path)
         order = np.argsort(t["rpm"])
-        ax.plot(t["rpm"][order], t["coordination"][order], "o-", label=label or path)
+        line, = ax.plot(t["rpm"][order], t["coordination"][order], "o-", label=label or path)
+        points = t.get("coord_points", np.full(len(order), np.nan))[order]
+        if np.isfinite(points).any():
+            ax.plot(t["rpm"][order], points, "s--", color=line.get_color(),
+                    label=f"{label or path}, per contact point")
     ax.set_xlabel("rotation rate (rpm)")
     ax.set_ylabel("time-averaged coordination number")
     ax.set_title("Part III Fig. 25 with dem's runs (the last half of each)")

@@ -16,7 +16,7 @@
 
 writes drum_vmean.png, drum_coordination.png and (with --h5) drum_pdf.png and drum_regimes.png. The series
 files must hold the columns c_vm (compute vmean ... drum ...: already divided by Omega R), c_cn (compute
-coord), c_surf (compute repose) and c_co, c_co[2] (compute corotate), as inputs/in.drum writes them; their
+coord; and c_cp, coord points, if it has it), c_surf (compute repose) and c_co, c_co[2] (compute corotate), as inputs/in.drum writes them; their
 first line is taken as t = 0 of the rotation.
 """
 import argparse
@@ -52,7 +52,7 @@ def time_averaged_speed(path, radius, omega, last_half=True):
     return np.array([acc[i] / count[i] for i in acc]) / (omega * radius)
 
 
-REGIMES_HEADER = "rpm  corotating  carried  free_flight  vm     vm_cv  angle  angle_std  coordination  regime"
+REGIMES_HEADER = "rpm  corotating  carried  free_flight  vm     vm_cv  angle  angle_std  coordination  coord_points  regime"
 
 
 def read_regimes(path):
@@ -126,7 +126,8 @@ def main(argv=None):
             m = drum_regimes.markers(series, h5, a.radius)
             found[rpm] = drum_regimes.classify(m)
             print(f"{rpm:<4g} {m['corotating']:10.3f} {m['carried']:8.3f} {m['free_flight']:12.4f} {m['vm']:6.3f} "
-                  f"{m['vm_cv']:6.3f} {m['angle']:6.1f} {m['angle_std']:10.1f} {m['coordination']:13.2f}  {found[rpm]}")
+                  f"{m['vm_cv']:6.3f} {m['angle']:6.1f} {m['angle_std']:10.1f} {m['coordination']:13.2f} "
+                  f"{m['coord_points']:13.2f}  {found[rpm]}")
         rows = [(a.label, found)]
         if a.paper == "cross3d":
             rows.insert(0, ("Part III (text), 3D crosses", drum_regimes.PAPER_CROSS3D))

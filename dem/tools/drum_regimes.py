@@ -8,7 +8,9 @@ Markers of one run, over the last half of its rotation (`markers`):
   at rest or carried by the wall, neighbours sit at contact distance give or take round-off), from the
   HDF5 frames;
 * the mean and the coefficient of variation (std / mean) of <|v|> / (Omega R) (c_vm), the mean and the
-  standard deviation of the surface angle (c_surf), the mean coordination (c_cn).
+  standard deviation of the surface angle (c_surf), the mean coordination (c_cn: per pair) and, where the
+  series has it, the mean coordination counted per contact point (c_cp, `compute coord points`: as
+  Grains3D counts the contacts of glued composites).
 
 Classification (`classify`), tested in this order; the thresholds are dem's, stated here, not fitted to
 the paper:
@@ -90,7 +92,8 @@ def markers(series, h5=None, radius=0.05, axis=1):
             "vm_cv": float(np.std(vm) / np.mean(vm)) if np.mean(vm) > 0 else 0.0,
             "angle": float(np.mean(last["c_surf"])),
             "angle_std": float(np.std(last["c_surf"])),
-            "coordination": float(np.mean(last["c_cn"]))}
+            "coordination": float(np.mean(last["c_cn"])),
+            "coord_points": float(np.mean(last["c_cp"])) if "c_cp" in last else math.nan}
 
 
 def classify(m):

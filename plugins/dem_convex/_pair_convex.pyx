@@ -361,7 +361,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 if code > 1:
                     nepa += 1
             ncont += 1
-            count_contact(P, i, j)
+            count_contact(P, i, j, 1)
             rmin = P.radius[i] if P.radius[i] < P.radius[j] else P.radius[j]
             if con.delta > maxov * (2.0 * rmin):     # (a division only for a new largest overlap)
                 maxov = con.delta / (2.0 * rmin)

@@ -300,7 +300,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     continue
                 ncont += 1.0
                 npts += npt
-                count_contact(P, i, j)
+                count_contact(P, i, j, npt)
                 weight = 1.0 / npt if model_b else 1.0
                 meff = P.rmass[i] * P.rmass[j] / (P.rmass[i] + P.rmass[j])
                 if not model_b:                # eq. 18: gamma_n of N_c summed springs

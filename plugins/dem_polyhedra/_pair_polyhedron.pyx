@@ -302,7 +302,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     maxov = con[0].delta / dist
                 stats[0] += 1.0
                 stats[1] += npt
-                count_contact(P, i, j)
+                count_contact(P, i, j, npt)
                 if typ > 0:
                     stats[3 + typ] += 1.0
                     if typ == PC_FACE_FACE:

@@ -57,15 +57,18 @@ class ComputeERotate(Compute):
 
 
 class ComputeCoord(Compute):
-    """compute ID group coord
+    """compute ID group coord [points]
 
     Coordination number: the mean number of contacts per particle of the group, Z = sum_i c_i / N, c_i
     the particle-particle contacts of particle i at the last force evaluation (pair style; a pair touching
     at several points counts once) and N the group's particles; for group `all`, 2 C / N with C the
-    contacts. Vector: [Z, Z counting wall contacts too (sum_i c_i + W) / N, sum_i c_i / 2 (C for `all`),
-    W], W the contacts of the wall fixes (every fix with a contact count: wall/plane, wall/drum,
-    wall/mesh; all of them, whatever their group). A group other than `all` reads the per-particle
-    contact count (dem/tally.py), which every pair style fills."""
+    contacts. `points`: c_i counts contact points instead, as Grains3D counts the contacts of glued
+    composites (one per touching pair of pieces: two crosses touching at two beams count 2;
+    polyhedron/multipoint: the points of each contact type; spheres and convex particles: 1 per contact).
+    Vector: [Z, Z counting wall contacts too (sum_i c_i + W) / N, sum_i c_i / 2 (C for `all`), W], W the
+    contacts of the wall fixes (every fix with a contact count: wall/plane, wall/drum, wall/mesh; all of
+    them, whatever their group; one per wall contact also with `points`). A group other than `all`, and
+    `points`, read the per-particle contact count (dem/tally.py), which every pair style fills."""
 
     style = "coord"
     size_vector = 4
@@ -73,8 +76,8 @@ class ComputeCoord(Compute):
 
     def __init__(self, sim, cid, group, args):
         super().__init__(sim, cid, group, args)
-        self.parser().exactly(0)
-        self.whole = group == "all"
+        self.points = "points" in self.parser().keywords(0, {"points": 0})
+        self.whole = group == "all" and not self.points
         self.tallies = () if self.whole else ("count",)
 
     def _counts(self):
@@ -84,7 +87,7 @@ class ComputeCoord(Compute):
         if self.whole:
             c = sim.comm.sum(sim.pair.ncontacts) if sim.pair is not None else 0
             return 2.0 * c, w, sim.atom.natoms
-        ends = sim.tally.get("count", f"compute {self.id} coord")[:, 0]
+        ends = sim.tally.get("count", f"compute {self.id} coord")[:, 1 if self.points else 0]
         sel = self.group_mask()
         return sim.comm.sum(float(ends[sel].sum())), w, sim.comm.sum(int(sel.sum()))
 

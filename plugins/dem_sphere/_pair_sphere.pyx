@@ -51,7 +51,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     con.n[d] = dx[d] * rinv
                 con.delta = rsum - r
                 ncont += 1
-                count_contact(P, i, j)
+                count_contact(P, i, j, 1)
                 ov = con.delta / (2.0 * (P.radius[i] if P.radius[i] < P.radius[j] else P.radius[j]))
                 if ov > maxov:
                     maxov = ov
