@@ -636,7 +636,11 @@ def test_drum_coordination_plot(tmp_path):
     crosses = os.path.join(root, "docs", "data", "drum_sweep", "regimes.txt")
     t = tool.read_regimes(crosses)
     assert list(t["rpm"]) == [5, 20, 42, 80, 150, 200, 250] and t["coordination"][0] == 4.06
+    # a table with the coordination per contact point too (crosses touching at several beams)
+    points = os.path.join(root, "docs", "data", "drum_sweep", "cross3d_points", "regimes.txt")
+    p = tool.read_regimes(points)
+    assert list(p["rpm"]) == [42, 150, 250] and (p["coord_points"] > p["coordination"]).all()
     out = tmp_path / "c.png"
     tool.main([f"{crosses}:3D crosses", os.path.join(root, "docs", "data", "drum_sweep", "spheres", "regimes.txt"),
-               "-o", str(out)])
+               f"{points}:3D crosses, per point", "-o", str(out)])
     assert out.stat().st_size > 0
