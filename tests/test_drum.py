@@ -257,14 +257,22 @@ def test_end_walls_contain_particles():
 
 def test_surface_fit_recovers_a_tilted_surface():
     """Particles filling a disc of radius 1 below a line of slope tan(25 deg): the fit of the highest
-    particle per bin gives 25 degrees (within 1 degree: one bin's height step)."""
+    particle per bin gives 25 degrees (within 1 degree: one bin's height step), and a roughness below the
+    bins' height step (0.1 tan 25 = 0.047: the highest particle of a bin lies within it of the line). Ripples
+    of amplitude 0.1 on the same surface give a roughness of 0.1 / sqrt(2) (the rms of a sine) within that
+    step."""
     rng = np.random.default_rng(3)
     p = rng.uniform(-1, 1, (20000, 2))
     slope = math.tan(math.radians(25))
     keep = (np.hypot(p[:, 0], p[:, 1]) < 1) & (p[:, 1] < -0.2 + slope * p[:, 0])
-    angle, b, a, used = surface_fit(p[keep, 0], p[keep, 1], nbins=20, trim=0.15)
+    angle, b, a, used, rough = surface_fit(p[keep, 0], p[keep, 1], nbins=20, trim=0.15)
     assert angle == pytest.approx(25.0, abs=1.0)
     assert a == pytest.approx(-0.2, abs=0.03) and used >= 10
+    assert rough < 0.1 * slope
+    ripples = 0.1 * np.sin(2 * np.pi * p[:, 0] / 0.5)            # four ripples across the bed
+    keep = (np.hypot(p[:, 0], p[:, 1]) < 1) & (p[:, 1] < -0.2 + slope * p[:, 0] + ripples)
+    rough = surface_fit(p[keep, 0], p[keep, 1], nbins=40, trim=0.15)[4]
+    assert rough * np.sqrt(1 + slope ** 2) == pytest.approx(0.1 / np.sqrt(2), abs=0.1 * slope / 2)
 
 
 def test_errors():

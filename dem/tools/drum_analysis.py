@@ -52,7 +52,7 @@ def time_averaged_speed(path, radius, omega, last_half=True):
     return np.array([acc[i] / count[i] for i in acc]) / (omega * radius)
 
 
-REGIMES_HEADER = "rpm  corotating  carried  free_flight  vm     vm_cv  angle  angle_std  coordination  coord_points  regime"
+REGIMES_HEADER = "rpm  corotating  carried  free_flight  vm     vm_cv  angle  angle_std  coordination  coord_points  roughness_mm  regime"
 
 
 def read_regimes(path):
@@ -127,7 +127,7 @@ def main(argv=None):
             found[rpm] = drum_regimes.classify(m)
             print(f"{rpm:<4g} {m['corotating']:10.3f} {m['carried']:8.3f} {m['free_flight']:12.4f} {m['vm']:6.3f} "
                   f"{m['vm_cv']:6.3f} {m['angle']:6.1f} {m['angle_std']:10.1f} {m['coordination']:13.2f} "
-                  f"{m['coord_points']:13.2f}  {found[rpm]}")
+                  f"{m['coord_points']:13.2f} {1e3 * m['roughness']:13.2f}  {found[rpm]}")
         rows = [(a.label, found)]
         if a.paper == "cross3d":
             rows.insert(0, ("Part III (text), 3D crosses", drum_regimes.PAPER_CROSS3D))

@@ -10,7 +10,9 @@ Markers of one run, over the last half of its rotation (`markers`):
 * the mean and the coefficient of variation (std / mean) of <|v|> / (Omega R) (c_vm), the mean and the
   standard deviation of the surface angle (c_surf), the mean coordination (c_cn: per pair) and, where the
   series has it, the mean coordination counted per contact point (c_cp, `compute coord points`: as
-  Grains3D counts the contacts of glued composites).
+  Grains3D counts the contacts of glued composites);
+* the roughness of the free surface: the rms distance of the surface particles from compute repose's
+  line (dem_process.compute_drum.surface_fit), from the HDF5 frames: how flat the surface is.
 
 Classification (`classify`), tested in this order; the thresholds are dem's, stated here, not fitted to
 the paper:
@@ -43,6 +45,28 @@ PAPER_CROSS3D = {5: "avalanching", 20: "avalanching", 80: "transition", 125: "ca
                  150: "pseudo-cataracting", 200: "centrifuging", 250: "centrifuging"}
 
 
+def _frames(f, last_half):
+    names = sorted(f["frames"])
+    return [f["frames"][n] for n in (names[len(names) // 2:] if last_half else names)]
+
+
+def surface_roughness(path, axis=1, last_half=True):
+    """Mean roughness of the free surface (compute repose's: the rms distance of the highest bed particle
+    of each bin from the fitted line, m) over the frames (of the last half) of an HDF5 dump of a drum whose
+    axis `axis` is horizontal, z up."""
+    import h5py
+    from dem_process.compute_drum import surface_fit      # the installed plugin (compute repose fits the same)
+    if axis == 2:
+        raise ValueError("surface_roughness: the drum axis must be horizontal (x or y), z up")
+    across = 1 - axis                                       # the horizontal direction of the cross-section
+    rough = []
+    with h5py.File(path, "r", locking=False) as f:
+        for g in _frames(f, last_half):
+            x = g["position"][()][g["type"][()] == 1]
+            rough.append(surface_fit(x[:, across], x[:, 2])[4])
+    return float(np.mean(rough)) if rough else math.nan
+
+
 def free_flight_fraction(path, radius, axis=1, last_half=True):
     """Mean fraction of the bed (type 1) touching nothing, over the frames (of the last half) of an HDF5
     dump of a drum of radius `radius` centred on the axis `axis` (through the origin)."""
@@ -50,11 +74,7 @@ def free_flight_fraction(path, radius, axis=1, last_half=True):
     from scipy.spatial import cKDTree
     fractions = []
     with h5py.File(path, "r", locking=False) as f:
-        names = sorted(f["frames"])
-        if last_half:
-            names = names[len(names) // 2:]
-        for name in names:
-            g = f["frames"][name]
+        for g in _frames(f, last_half):
             x = g["position"][()]
             r = g["radius"][()]
             bed = g["type"][()] == 1
@@ -93,7 +113,8 @@ def markers(series, h5=None, radius=0.05, axis=1):
             "angle": float(np.mean(last["c_surf"])),
             "angle_std": float(np.std(last["c_surf"])),
             "coordination": float(np.mean(last["c_cn"])),
-            "coord_points": float(np.mean(last["c_cp"])) if "c_cp" in last else math.nan}
+            "coord_points": float(np.mean(last["c_cp"])) if "c_cp" in last else math.nan,
+            "roughness": surface_roughness(h5, axis) if h5 else math.nan}
 
 
 def classify(m):

@@ -13,12 +13,13 @@ def surface_fit(h, u, nbins=20, trim=0.15):
     """Free surface of a bed seen in a drum's cross-section: particles at horizontal h and height u. The
     h-range of the particles is cut into nbins bins; in each, the highest particle marks the surface;
     a straight line u = a + b h is fitted to the bins of the central part (trim of the range left out
-    at each end, where the surface bends along the wall). Returns (angle in degrees, b, a, bins used)."""
+    at each end, where the surface bends along the wall). Returns (angle in degrees, b, a, bins used,
+    roughness: the rms distance of the bins' highest particles from the line, across it)."""
     if len(h) < 3:
-        return 0.0, 0.0, 0.0, 0
+        return 0.0, 0.0, 0.0, 0, 0.0
     lo, hi = float(h.min()), float(h.max())
     if hi <= lo:
-        return 0.0, 0.0, 0.0, 0
+        return 0.0, 0.0, 0.0, 0, 0.0
     k = np.minimum(((h - lo) / (hi - lo) * nbins).astype(np.int64), nbins - 1)
     top = np.full(nbins, -np.inf)
     np.maximum.at(top, k, u)
@@ -29,10 +30,11 @@ def surface_fit(h, u, nbins=20, trim=0.15):
     centres = lo + (np.arange(nbins) + 0.5) * (hi - lo) / nbins
     keep = np.isfinite(top) & (centres >= lo + trim * (hi - lo)) & (centres <= hi - trim * (hi - lo))
     if keep.sum() < 2:
-        return 0.0, 0.0, 0.0, int(keep.sum())
+        return 0.0, 0.0, 0.0, int(keep.sum()), 0.0
     hs, us = h[which[keep]], top[keep]
     b, a = np.polyfit(hs, us, 1)
-    return math.degrees(math.atan(b)), float(b), float(a), int(keep.sum())
+    rough = math.sqrt(float(np.mean((us - a - b * hs) ** 2)) / (1.0 + b * b))
+    return math.degrees(math.atan(b)), float(b), float(a), int(keep.sum()), rough
 
 
 class ComputeRepose(Compute):
@@ -44,13 +46,14 @@ class ComputeRepose(Compute):
     highest particle of each bin marks the free surface, and a least-squares line through the surface
     points of the central bins (leaving out a fraction F = 0.15 of the extent at each end, where the
     surface bends) gives the angle. Scalar: |angle|. Vector: [signed angle (positive: the surface rises
-    towards +h, h = up x axis), slope, height of the line at the axis (m), surface points used].
+    towards +h, h = up x axis), slope, height of the line at the axis (m), surface points used,
+    roughness (m): the rms distance of the surface points from the line (a flat surface: ~0)].
     Meaningful in the rolling and cascading regimes (a flat-ish surface); in cataracting or
     centrifuging regimes, flying or wall-borne particles make it a rough indicator only."""
 
     style = "repose"
-    size_vector = 4
-    vector_names = ("angle", "slope", "intercept", "points")
+    size_vector = 5
+    vector_names = ("angle", "slope", "intercept", "points", "roughness")
     usage = "DRUM-FIX-ID [bins N] [trim F]"
 
     def __init__(self, sim, cid, group, args):
@@ -73,8 +76,7 @@ class ComputeRepose(Compute):
         # every rank fits the same surface, through all the particles
         _, x = sim.comm.allgather_rows(atom.data["tag"][:atom.nlocal][sel], atom.data["x"][:atom.nlocal][sel])
         x = np.asarray(x).reshape(-1, 3) - drum.centre
-        angle, slope, icpt, used = surface_fit(x @ eh, x @ up, self.nbins, self.trim)
-        return np.array([angle, slope, icpt, used], dtype=float)
+        return np.array(surface_fit(x @ eh, x @ up, self.nbins, self.trim), dtype=float)
 
     def compute_scalar(self):
         return abs(self.vector()[0])
