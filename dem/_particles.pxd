@@ -2,7 +2,8 @@
 """The particle arrays as kernels see them: one struct of pointers (Particles) into the atom store,
 rebuilt at every kernel call (arrays grow and move: never kept across calls). Row i of a 3-vector field
 is x[3 i:3 i + 3]; ghosts follow the owned rows. `stress` (9 per row), `ctypes` (5 per row) and `ccount`
-(2 per row: pair contacts, contact points) are the contact tallies of dem/tally.py, NULL unless an analysis style asked for them."""
+(2 per row: pair contacts, contact points) are the contact tallies of dem/tally.py, NULL unless an analysis
+style asked for them."""
 
 cdef struct Particles:
     int nlocal

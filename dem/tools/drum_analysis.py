@@ -16,8 +16,8 @@
 
 writes drum_vmean.png, drum_coordination.png and (with --h5) drum_pdf.png and drum_regimes.png. The series
 files must hold the columns c_vm (compute vmean ... drum ...: already divided by Omega R), c_cn (compute
-coord; and c_cp, coord points, if it has it), c_surf (compute repose) and c_co, c_co[2] (compute corotate), as inputs/in.drum writes them; their
-first line is taken as t = 0 of the rotation.
+coord), c_surf (compute repose) and c_co, c_co[2] (compute corotate), and may hold c_cp (compute coord
+points), as inputs/in.drum writes them; their first line is taken as t = 0 of the rotation.
 """
 import argparse
 import math
@@ -52,7 +52,8 @@ def time_averaged_speed(path, radius, omega, last_half=True):
     return np.array([acc[i] / count[i] for i in acc]) / (omega * radius)
 
 
-REGIMES_HEADER = "rpm  corotating  carried  free_flight  vm     vm_cv  angle  angle_std  coordination  coord_points  roughness_mm  regime"
+REGIMES_HEADER = ("rpm  corotating  carried  free_flight  vm     vm_cv  angle  angle_std  coordination  coord_points  "
+                  "roughness_mm  regime")
 
 
 def read_regimes(path):
