@@ -543,6 +543,8 @@ def test_main_drum_input_runs(tmp_path, monkeypatch, shape, n):
     from dem.tools import drum_analysis
     drum_analysis.main(["--rpm", "40", "--series", "drum.dat", "--h5", "drum.h5", "-o", "a"])
     assert (tmp_path / "a_regimes.png").stat().st_size > 0
+    # Fig. 27's PDF is the bed's: the wall's spheres (at 0.97 Omega R always) are not in it
+    assert len(drum_analysis.time_averaged_speed("drum.h5", R, om)) == n
 
 
 def test_main_drum_input_stops_when_the_fill_is_too_short(tmp_path, monkeypatch):
@@ -647,8 +649,27 @@ def test_drum_coordination_plot(tmp_path):
     # a table with the coordination per contact point too (crosses touching at several beams)
     points = os.path.join(root, "docs", "data", "drum_sweep", "cross3d_points", "regimes.txt")
     p = tool.read_regimes(points)
-    assert list(p["rpm"]) == [42, 150, 250] and (p["coord_points"] > p["coordination"]).all()
+    assert list(p["rpm"]) == [42, 150, 200, 250] and (p["coord_points"] > p["coordination"]).all()
     out = tmp_path / "c.png"
     tool.main([f"{crosses}:3D crosses", os.path.join(root, "docs", "data", "drum_sweep", "spheres", "regimes.txt"),
                f"{points}:3D crosses, per point", "-o", str(out)])
+    assert out.stat().st_size > 0
+
+
+def test_drum_regime_map(tmp_path):
+    """tools/drum_regime_map.py draws Fig. 30 from the regime tables kept in docs/data, the paper's rows first."""
+    import importlib.util
+    import os
+    root = os.path.join(os.path.dirname(__file__), os.pardir)
+    spec = importlib.util.spec_from_file_location("drum_regime_map", os.path.join(root, "tools", "drum_regime_map.py"))
+    tool = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tool)
+    data = os.path.join(root, "docs", "data", "drum_sweep")
+    tables = [os.path.join(data, "regimes.txt") + ":3D crosses", os.path.join(data, "cubes", "regimes.txt") + ":cubes"]
+    rows = tool.rows_of(tables)
+    assert [label for label, _ in rows] == ["Part III (text), spheres [39]", "Part III (text), 3D crosses",
+                                            "dem, 3D crosses", "dem, cubes"]
+    assert rows[2][1][250.0] == "centrifuging" and rows[3][1][20.0] == "avalanching"
+    out = tmp_path / "m.png"
+    tool.main(tables + ["-o", str(out)])
     assert out.stat().st_size > 0

@@ -38,18 +38,21 @@ def _figure(w=7, h=4.5):
 
 
 def time_averaged_speed(path, radius, omega, last_half=True):
-    """Per-particle |v| averaged over the frames (of the last half) of an HDF5 dump, / (Omega R)."""
+    """Per-particle |v| of the bed (type 1: not the particles glued to a rough wall, which turn with it)
+    averaged over the frames (of the last half) of an HDF5 dump, / (Omega R)."""
     from .drum_frames import read_frames
     frames = read_frames(path)
     if last_half:
         frames = frames[len(frames) // 2:]
-    acc, count = {}, {}
+    ids0, acc = None, 0.0
     for _, _, arr in frames:
-        speed = np.sqrt((arr["velocity"] ** 2).sum(1))
-        for i, s in zip(arr["id"], speed):
-            acc[i] = acc.get(i, 0.0) + s
-            count[i] = count.get(i, 0) + 1
-    return np.array([acc[i] / count[i] for i in acc]) / (omega * radius)
+        bed = arr["type"] == 1
+        order = np.argsort(arr["id"][bed])
+        ids = arr["id"][bed][order]
+        if ids0 is not None and not np.array_equal(ids, ids0):
+            raise ValueError(f"{path}: the bed's particles change between frames")
+        ids0, acc = ids, acc + np.sqrt((arr["velocity"][bed][order] ** 2).sum(1))
+    return acc / len(frames) / (omega * radius)
 
 
 REGIMES_HEADER = ("rpm  corotating  carried  free_flight  vm     vm_cv  angle  angle_std  coordination  coord_points  "

@@ -43,6 +43,9 @@ INTERMITTENT = 0.2
 # cataracting"
 PAPER_CROSS3D = {5: "avalanching", 20: "avalanching", 80: "transition", 125: "cataracting",
                  150: "pseudo-cataracting", 200: "centrifuging", 250: "centrifuging"}
+# spheres, from Part III's account of its ref. [39] (sec. 4.2.1): ballistic flights at 150-200 rpm, centrifuging
+# from about 220 rpm
+PAPER_SPHERES = {150: "cataracting", 200: "cataracting", 250: "centrifuging"}
 
 
 def _frames(f, last_half):
