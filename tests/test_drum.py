@@ -545,6 +545,12 @@ def test_main_drum_input_runs(tmp_path, monkeypatch, shape, n):
     assert (tmp_path / "a_regimes.png").stat().st_size > 0
     # Fig. 27's PDF is the bed's: the wall's spheres (at 0.97 Omega R always) are not in it
     assert len(drum_analysis.time_averaged_speed("drum.h5", R, om)) == n
+    pdf = _tool("drum_pdf")
+    pdf.main(["drum.h5:40:bed", "-o", "p.png"])
+    assert (tmp_path / "p.png").stat().st_size > 0
+    # widths: a uniform spread over [0, 1] has std 1/sqrt(12) and a 5-95 % range of 0.9
+    mean, std, spread = pdf.widths(np.linspace(0.0, 1.0, 100001))
+    assert (mean, std, spread) == pytest.approx((0.5, 12 ** -0.5, 0.9), rel=1e-4)
 
 
 def test_main_drum_input_stops_when_the_fill_is_too_short(tmp_path, monkeypatch):
@@ -635,14 +641,22 @@ def test_carried_group_must_be_the_drums_alone(integ, fixgroup, message):
         sim.run(1)
 
 
-def test_drum_coordination_plot(tmp_path):
-    """tools/drum_coordination.py reads the regime tables kept in docs/data (Fig. 25 for several shapes)."""
+def _tool(name):
+    """A script of tools/ as a module."""
     import importlib.util
     import os
-    root = os.path.join(os.path.dirname(__file__), os.pardir)
-    spec = importlib.util.spec_from_file_location("drum_coordination", os.path.join(root, "tools", "drum_coordination.py"))
+    path = os.path.join(os.path.dirname(__file__), os.pardir, "tools", f"{name}.py")
+    spec = importlib.util.spec_from_file_location(name, path)
     tool = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(tool)
+    return tool
+
+
+def test_drum_coordination_plot(tmp_path):
+    """tools/drum_coordination.py reads the regime tables kept in docs/data (Fig. 25 for several shapes)."""
+    import os
+    root = os.path.join(os.path.dirname(__file__), os.pardir)
+    tool = _tool("drum_coordination")
     crosses = os.path.join(root, "docs", "data", "drum_sweep", "regimes.txt")
     t = tool.read_regimes(crosses)
     assert list(t["rpm"]) == [5, 20, 42, 80, 150, 200, 250] and t["coordination"][0] == 4.06
@@ -658,12 +672,9 @@ def test_drum_coordination_plot(tmp_path):
 
 def test_drum_regime_map(tmp_path):
     """tools/drum_regime_map.py draws Fig. 30 from the regime tables kept in docs/data, the paper's rows first."""
-    import importlib.util
     import os
     root = os.path.join(os.path.dirname(__file__), os.pardir)
-    spec = importlib.util.spec_from_file_location("drum_regime_map", os.path.join(root, "tools", "drum_regime_map.py"))
-    tool = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(tool)
+    tool = _tool("drum_regime_map")
     data = os.path.join(root, "docs", "data", "drum_sweep")
     tables = [os.path.join(data, "regimes.txt") + ":3D crosses", os.path.join(data, "cubes", "regimes.txt") + ":cubes"]
     rows = tool.rows_of(tables)
