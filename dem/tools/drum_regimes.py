@@ -54,19 +54,21 @@ def _frames(f, last_half):
 
 
 def surface_roughness(path, axis=1, last_half=True):
-    """Mean roughness of the free surface (compute repose's: the rms distance of the highest bed particle
-    of each bin from the fitted line, m) over the frames (of the last half) of an HDF5 dump of a drum whose
+    """Mean roughness of the free surface (compute repose's: the rms distance of the top of the bed in each
+    bin from the fitted line, m) over the frames (of the last half) of an HDF5 dump of a drum whose
     axis `axis` is horizontal, z up."""
     import h5py
-    from dem_process.compute_drum import surface_fit      # the installed plugin (compute repose fits the same)
+    from dem_process.compute_drum import SURFACE_GAP, surface_fit   # the installed plugin (compute repose's fit)
     if axis == 2:
         raise ValueError("surface_roughness: the drum axis must be horizontal (x or y), z up")
     across = 1 - axis                                       # the horizontal direction of the cross-section
     rough = []
     with h5py.File(path, "r", locking=False) as f:
         for g in _frames(f, last_half):
-            x = g["position"][()][g["type"][()] == 1]
-            rough.append(surface_fit(x[:, across], x[:, 2])[4])
+            bed = g["type"][()] == 1
+            x = g["position"][()][bed]
+            gap = SURFACE_GAP * float(g["radius"][()][bed].max())
+            rough.append(surface_fit(x[:, across], x[:, 2], gap=gap)[4])
     return float(np.mean(rough)) if rough else math.nan
 
 

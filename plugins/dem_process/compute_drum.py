@@ -9,24 +9,34 @@ from dem.compute import Compute
 from ._common import cross_section_basis, find_drum
 
 
-def surface_fit(h, u, nbins=20, trim=0.15):
+SURFACE_GAP = 4.0      # a vertical gap of this many largest radii in a bin's column ends the bed there
+
+
+def surface_fit(h, u, nbins=20, trim=0.15, gap=math.inf):
     """Free surface of a bed seen in a drum's cross-section: particles at horizontal h and height u. The
-    h-range of the particles is cut into nbins bins; in each, the highest particle marks the surface;
-    a straight line u = a + b h is fitted to the bins of the central part (trim of the range left out
-    at each end, where the surface bends along the wall). Returns (angle in degrees, b, a, bins used,
-    roughness: the rms distance of the bins' highest particles from the line, across it)."""
+    h-range of the particles is cut into nbins bins; in each, the top of the bed marks the surface: the
+    highest particle of the column that rises from the bin's lowest particle without a vertical gap
+    larger than `gap` (so a particle carried on the wall high above the bed, or one in flight, is not
+    taken for the surface). A straight line u = a + b h is fitted to the bins of the central part (trim
+    of the range left out at each end, where the surface bends along the wall). Returns (angle in degrees,
+    b, a, bins used, roughness: the rms distance of the bins' surface particles from the line, across it)."""
     if len(h) < 3:
         return 0.0, 0.0, 0.0, 0, 0.0
     lo, hi = float(h.min()), float(h.max())
     if hi <= lo:
         return 0.0, 0.0, 0.0, 0, 0.0
     k = np.minimum(((h - lo) / (hi - lo) * nbins).astype(np.int64), nbins - 1)
-    top = np.full(nbins, -np.inf)
-    np.maximum.at(top, k, u)
+    order = np.lexsort((u, k))                 # by bin, then upwards
+    ks, us = k[order], u[order]
+    first = np.r_[True, ks[1:] != ks[:-1]]
+    breaks = np.cumsum(~first & (np.diff(us, prepend=-np.inf) > gap))
+    column = breaks == np.maximum.accumulate(np.where(first, breaks, 0))   # no gap since the bin's bottom
+    kept, kk = order[column], ks[column]
+    last = np.r_[kk[1:] != kk[:-1], True]      # the last kept of each bin: its column's top
     which = np.full(nbins, -1, dtype=np.int64)
-    order = np.lexsort((u, k))                 # last of each bin = its highest particle
-    last = np.r_[k[order][1:] != k[order][:-1], True]
-    which[k[order][last]] = order[last]
+    which[kk[last]] = kept[last]
+    top = np.full(nbins, -np.inf)
+    top[kk[last]] = u[kept[last]]
     centres = lo + (np.arange(nbins) + 0.5) * (hi - lo) / nbins
     keep = np.isfinite(top) & (centres >= lo + trim * (hi - lo)) & (centres <= hi - trim * (hi - lo))
     if keep.sum() < 2:
@@ -43,7 +53,9 @@ class ComputeRepose(Compute):
     Dynamic angle of repose (degrees) of the free surface of the bed in a rotating drum (fix wall/drum):
     positions are projected on the drum's cross-section, with the vertical opposite to the first fix
     gravity (+z without one); the horizontal extent of the bed is cut into N bins (default 20), the
-    highest particle of each bin marks the free surface, and a least-squares line through the surface
+    top of the bed in each bin marks the free surface (the highest particle of the column that rises
+    from the bin's lowest one without a vertical gap of more than 4 of the group's largest bounding
+    radii: a particle carried high on the wall or in flight is not the surface), and a least-squares line through the surface
     points of the central bins (leaving out a fraction F = 0.15 of the extent at each end, where the
     surface bends) gives the angle. Scalar: |angle|. Vector: [signed angle (positive: the surface rises
     towards +h, h = up x axis), slope, height of the line at the axis (m), surface points used,
@@ -75,8 +87,10 @@ class ComputeRepose(Compute):
         sel = self.group_mask()
         # every rank fits the same surface, through all the particles
         _, x = sim.comm.allgather_rows(atom.data["tag"][:atom.nlocal][sel], atom.data["x"][:atom.nlocal][sel])
+        r = atom.data["radius"][:atom.nlocal][sel]
+        gap = SURFACE_GAP * sim.comm.max(float(r.max()) if len(r) else 0.0)
         x = np.asarray(x).reshape(-1, 3) - drum.centre
-        return np.array(surface_fit(x @ eh, x @ up, self.nbins, self.trim), dtype=float)
+        return np.array(surface_fit(x @ eh, x @ up, self.nbins, self.trim, gap), dtype=float)
 
     def compute_scalar(self):
         return abs(self.vector()[0])
