@@ -36,7 +36,7 @@ def main(argv=None):
         s = time_averaged_speed(path, a.radius, float(rpm) * 2 * math.pi / 60)
         mean, std, spread = widths(s)
         print(f"{label}  {rpm}  {mean:.3f}  {std:.3f}  {spread:.3f}")
-        hist, edges = np.histogram(s, bins=np.linspace(0, 2, 61), density=True)
+        hist, edges = np.histogram(s, bins=np.linspace(0.0, max(2.0, s.max()), 61), density=True)
         axes[0, labels.index(label)].plot(0.5 * (edges[1:] + edges[:-1]), hist, label=f"{rpm} rpm")
     for ax, label in zip(axes[0], labels):
         ax.set_title(label)

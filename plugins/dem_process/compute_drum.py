@@ -55,9 +55,9 @@ class ComputeRepose(Compute):
     gravity (+z without one); the horizontal extent of the bed is cut into N bins (default 20), the
     top of the bed in each bin marks the free surface (the highest particle of the column that rises
     from the bin's lowest one without a vertical gap of more than 4 of the group's largest bounding
-    radii: a particle carried high on the wall or in flight is not the surface), and a least-squares line through the surface
-    points of the central bins (leaving out a fraction F = 0.15 of the extent at each end, where the
-    surface bends) gives the angle. Scalar: |angle|. Vector: [signed angle (positive: the surface rises
+    radii: a particle carried high on the wall or in flight is not the surface), and a least-squares
+    line through the surface points of the central bins (leaving out a fraction F = 0.15 of the extent
+    at each end, where the surface bends) gives the angle. Scalar: |angle|. Vector: [signed angle (positive: the surface rises
     towards +h, h = up x axis), slope, height of the line at the axis (m), surface points used,
     roughness (m): the rms distance of the surface points from the line (a flat surface: ~0)].
     Meaningful in the rolling and cascading regimes (a flat-ish surface); in cataracting or
