@@ -40,19 +40,17 @@ def _figure(w=7, h=4.5):
 def time_averaged_speed(path, radius, omega, last_half=True):
     """Per-particle |v| of the bed (type 1: not the particles glued to a rough wall, which turn with it)
     averaged over the frames (of the last half) of an HDF5 dump, / (Omega R)."""
-    from .drum_frames import read_frames
-    frames = read_frames(path)
-    if last_half:
-        frames = frames[len(frames) // 2:]
-    ids0, acc = None, 0.0
-    for _, _, arr in frames:
-        bed = arr["type"] == 1
-        order = np.argsort(arr["id"][bed])
-        ids = arr["id"][bed][order]
-        if ids0 is not None and not np.array_equal(ids, ids0):
-            raise ValueError(f"{path}: the bed's particles change between frames")
-        ids0, acc = ids, acc + np.sqrt((arr["velocity"][bed][order] ** 2).sum(1))
-    return acc / len(frames) / (omega * radius)
+    import h5py
+    ids0, acc, n = None, 0.0, 0
+    with h5py.File(path, "r", locking=False) as f:
+        for g in drum_regimes.frames(f, last_half):
+            bed = g["type"][()] == 1
+            order = np.argsort(g["id"][()][bed])
+            ids = g["id"][()][bed][order]
+            if ids0 is not None and not np.array_equal(ids, ids0):
+                raise ValueError(f"{path}: the bed's particles change between frames")
+            ids0, acc, n = ids, acc + np.sqrt((g["velocity"][()][bed][order] ** 2).sum(1)), n + 1
+    return acc / n / (omega * radius)
 
 
 REGIMES_HEADER = ("rpm  corotating  carried  free_flight  vm     vm_cv  angle  angle_std  coordination  coord_points  "

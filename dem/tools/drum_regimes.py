@@ -48,7 +48,9 @@ PAPER_CROSS3D = {5: "avalanching", 20: "avalanching", 80: "transition", 125: "ca
 PAPER_SPHERES = {150: "cataracting", 200: "cataracting", 250: "centrifuging"}
 
 
-def _frames(f, last_half):
+def frames(f, last_half):
+    """The frame groups of an open dem HDF5 dump in step order (names are zero-padded steps), or the last
+    half of them."""
     names = sorted(f["frames"])
     return [f["frames"][n] for n in (names[len(names) // 2:] if last_half else names)]
 
@@ -64,7 +66,7 @@ def surface_roughness(path, axis=1, last_half=True):
     across = 1 - axis                                       # the horizontal direction of the cross-section
     rough = []
     with h5py.File(path, "r", locking=False) as f:
-        for g in _frames(f, last_half):
+        for g in frames(f, last_half):
             bed = g["type"][()] == 1
             x = g["position"][()][bed]
             gap = SURFACE_GAP * float(g["radius"][()][bed].max())
@@ -79,7 +81,7 @@ def free_flight_fraction(path, radius, axis=1, last_half=True):
     from scipy.spatial import cKDTree
     fractions = []
     with h5py.File(path, "r", locking=False) as f:
-        for g in _frames(f, last_half):
+        for g in frames(f, last_half):
             x = g["position"][()]
             r = g["radius"][()]
             bed = g["type"][()] == 1

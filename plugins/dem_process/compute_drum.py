@@ -35,8 +35,7 @@ def surface_fit(h, u, nbins=20, trim=0.15, gap=math.inf):
     last = np.r_[kk[1:] != kk[:-1], True]      # the last kept of each bin: its column's top
     which = np.full(nbins, -1, dtype=np.int64)
     which[kk[last]] = kept[last]
-    top = np.full(nbins, -np.inf)
-    top[kk[last]] = u[kept[last]]
+    top = np.where(which >= 0, u[which], -np.inf)
     centres = lo + (np.arange(nbins) + 0.5) * (hi - lo) / nbins
     keep = np.isfinite(top) & (centres >= lo + trim * (hi - lo)) & (centres <= hi - trim * (hi - lo))
     if keep.sum() < 2:
@@ -57,9 +56,10 @@ class ComputeRepose(Compute):
     from the bin's lowest one without a vertical gap of more than 4 of the group's largest bounding
     radii: a particle carried high on the wall or in flight is not the surface), and a least-squares
     line through the surface points of the central bins (leaving out a fraction F = 0.15 of the extent
-    at each end, where the surface bends) gives the angle. Scalar: |angle|. Vector: [signed angle (positive: the surface rises
-    towards +h, h = up x axis), slope, height of the line at the axis (m), surface points used,
-    roughness (m): the rms distance of the surface points from the line (a flat surface: ~0)].
+    at each end, where the surface bends) gives the angle. Scalar: |angle|. Vector: [signed angle
+    (positive: the surface rises towards +h, h = up x axis), slope, height of the line at the axis (m),
+    surface points used, roughness (m): the rms distance of the surface points from the line (a flat
+    surface: ~0)].
     Meaningful in the rolling and cascading regimes (a flat-ish surface); in cataracting or
     centrifuging regimes, flying or wall-borne particles make it a rough indicator only."""
 
