@@ -15,7 +15,9 @@ alone. The 73 collisions
 with vertex/face and edge/edge contacts only (one point, the exact depth and normal: a potential force)
 sum to +1.0e-5 (largest single change 3.3e-5); their error is the integrator's: for edge/edge-only
 collisions the rms change per collision is 1.7e-5, 3.9e-6, 9.9e-7 at T_c/50, /100, /200 (x4 per halving
-of dt). The edge/face collision does not converge: -7.2e-4 at T_c/100, -7.4e-4 at T_c/200 (the same
+of dt). A collision through a kink of the sharp depth (the deepest vertex passing from one end of an edge
+to the other, or the depth from a face axis to an edge axis) errs to first order instead: up to 1.5e-4
+at T_c/100 in this gas when the slab is dropped (docs/polyhedra.md, "Without the slab"). The edge/face collision does not converge: -7.2e-4 at T_c/100, -7.4e-4 at T_c/200 (the same
 collision, 2e5 steps); at T_c/50 the trajectory differs and three edge/face collisions give +9.6e-4,
 -5.5e-4, -0.9e-4. That is the shared-max-overlap rule (Descantes eq. 3): both ends of an edge that lies
 within the overlap slab of a face push with the deepest overlap, which is not the gradient of any
