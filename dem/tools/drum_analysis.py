@@ -45,8 +45,9 @@ def time_averaged_speed(path, radius, omega, last_half=True):
     with h5py.File(path, "r", locking=False) as f:
         for g in drum_regimes.frames(f, last_half):
             bed = g["type"][()] == 1
-            order = np.argsort(g["id"][()][bed])
-            ids = g["id"][()][bed][order]
+            ids = g["id"][()][bed]
+            order = np.argsort(ids)
+            ids = ids[order]
             if ids0 is not None and not np.array_equal(ids, ids0):
                 raise ValueError(f"{path}: the bed's particles change between frames")
             ids0, acc, n = ids, acc + np.sqrt((g["velocity"][()][bed][order] ** 2).sum(1)), n + 1
