@@ -40,14 +40,18 @@ class Neighbor:
 
     # ----- settings ------------------------------------------------------------------------------
     def cutmax(self):
-        """Largest pair cutoff: two of the largest bounding spheres plus the skin."""
-        return 2.0 * self.sim.modify.max_radius() + self.skin
+        """Largest pair cutoff: two of the largest bounding spheres, the pair style's reach and the skin."""
+        return 2.0 * self.sim.modify.max_radius() + self.reach() + self.skin
+
+    def reach(self):
+        """How far beyond touch the pair style's contacts act (a cohesive law: dem.pair.Pair.reach)."""
+        return self.sim.pair.reach if self.sim.pair is not None else 0.0
 
     def init(self):
         rmax = self.sim.modify.max_radius()
         if self.skin is None:
             self.skin = 0.2 * rmax if rmax > 0 else 0.0
-        self.sim.comm.cutghost = 2.0 * rmax + self.skin
+        self.sim.comm.cutghost = 2.0 * rmax + self.reach() + self.skin
 
     def invalidate(self):
         """Particles were added, removed or moved by a command: the next setup rebuilds from scratch."""
@@ -129,7 +133,7 @@ class Neighbor:
         binsize = max(self.cutmax(), 1e-300)
         while True:
             n = _neighbor.build_half(atom.data["x"], atom.data["radius"], atom.data["tag"], nlocal, nall,
-                                     self.skin, binsize, self.offsets, self.neigh)
+                                     self.skin + self.reach(), binsize, self.offsets, self.neigh)
             if n >= 0:
                 break
             self.neigh = np.zeros(int(-n * 1.3) + 64, dtype=np.int32)

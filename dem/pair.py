@@ -9,11 +9,14 @@ class Pair:
     `compute(advance)` adds forces and torques (on owned particles and ghosts; the core adds ghost
     contributions to their owners) and, when `advance` is False (a setup or `run 0` pass), must leave
     every contact history unchanged. After each compute: `ncontacts` (owned contacts), `max_overlap`
-    (largest overlap divided by the smaller diameter), `energy` (elastic energy stored in contacts)."""
+    (largest overlap divided by the smaller diameter), `energy` (elastic energy stored in contacts).
+    `reach`, set by `init`, is how far beyond touch a contact may still act (a cohesive law's pull-off
+    distance): the neighbor list adds it to every pair's cutoff."""
 
     kind = "pair"
     style = None
     tallies = ()          # per-particle contact tallies its kernel can fill (dem/tally.py)
+    reach = 0.0
 
     def __init__(self, sim, args):
         self.sim = sim

@@ -349,7 +349,7 @@ def test_cube_corner_on_wall_impulse_solution():
     """A cube falls corner first (tilted 30 deg about x then 20 deg about y) on a frictionless floor: the
     wall force acts at the deepest corner; stiff contact: the impulse solution of a point impact with the
     contact-point restitution of the law (see test_cylinder_impact)."""
-    import dem_contact
+    import dem.law
     from dem.shapes._support import rotation_matrix
     a, rho, en, kn = 0.002, 2500.0, 0.8, 1e8
     cx, sx, cy, sy = math.cos(math.radians(15)), math.sin(math.radians(15)), math.cos(math.radians(10)), math.sin(math.radians(10))
@@ -373,7 +373,7 @@ thermo 0
     # effective mass at the corner along z and its restitution under the law (gamma_n from m)
     k = np.cross(r, [0, 0, 1.0])
     meff = 1.0 / (1.0 / m + k @ k / inertia)
-    z = dem_contact.beta(en) * math.sqrt(m / meff)
+    z = dem.law.beta(en) * math.sqrt(m / meff)
     e = math.exp(-math.pi * z / math.sqrt(1 - z * z))
     P = (1 + e) * 0.5 * meff
     v_exp = np.array([0, 0, -0.5 + P / m])

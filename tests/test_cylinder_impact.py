@@ -39,7 +39,7 @@ import numpy as np
 import pytest
 
 import dem
-import dem_contact
+import dem.law
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 INPUT = os.path.join(HERE, os.pardir, "inputs", "in.cylinder_impact")
@@ -64,7 +64,7 @@ def impulse_solution(theta, e, v0=1.0):
 
 
 def effective_restitution(theta):
-    z = dem_contact.beta(EN) * math.sqrt(1.0 + M * lever(theta) ** 2 / I_YY)
+    z = dem.law.beta(EN) * math.sqrt(1.0 + M * lever(theta) ** 2 / I_YY)
     return math.exp(-math.pi * z / math.sqrt(1.0 - z * z))
 
 

@@ -21,7 +21,7 @@ import math
 import numpy as np
 
 import dem
-import dem_contact
+import dem.law
 
 R, PHI, NSIDE, KN = 0.5, 0.3, 7, 1e4
 STEPS, SAMPLE = 100_000, 1000
@@ -31,7 +31,7 @@ def gas(seed, steps_per_contact=200):
     a = (4.0 / 3.0 * math.pi * R ** 3 / PHI) ** (1.0 / 3.0)      # sc lattice spacing for PHI
     L = NSIDE * a
     m = 4.0 / 3.0 * math.pi * R ** 3
-    tc = dem_contact.contact_time(KN, 1.0, 0.5 * m)
+    tc = dem.law.contact_time(KN, 1.0, 0.5 * m)
     sim = dem.Simulation(screen=False)
     sim.commands(f"""
 boundary p p p
@@ -87,7 +87,7 @@ def test_etotal_includes_wall_elastic_energy():
     the wall contacts by hand); without it, etotal dips by up to ~100 % in the middle of each contact."""
     R, kn = 0.5, 1e4
     m = 4.0 / 3.0 * math.pi * R ** 3
-    dt = dem_contact.contact_time(kn, 1.0, m) / 200
+    dt = dem.law.contact_time(kn, 1.0, m) / 200
     sim = dem.Simulation(screen=False)
     sim.commands(f"""
 boundary f f f

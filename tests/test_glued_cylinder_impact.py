@@ -85,7 +85,7 @@ import numpy as np
 import pytest
 
 import dem
-import dem_contact
+import dem.law
 from test_cylinder_impact import (EN, I_YY, L, M, R, TILTS, effective_restitution, impulse_solution, lever,
                                   simulate as simulate_true)
 
@@ -154,7 +154,7 @@ def contact_features(data, gap=4.0, dt=DT):
 def closed_form(n=1):
     """Eq. 11-14 with stiffness n kn and the damping ratio beta(e_n) (Model A with n points; Model B and one
     point: n = 1): (T_c, delta_max, peak force) at 1 m/s."""
-    beta = dem_contact.beta(EN)
+    beta = dem.law.beta(EN)
     w0 = math.sqrt(n * KN / M)
     gamma = beta * w0
     wd = math.sqrt(w0 * w0 - gamma * gamma)
@@ -260,7 +260,7 @@ def test_fig9_line_contact_post_impact_velocity():
             # below the 1e-13 m the series prints); every touching point gets the dashpot force at once:
             # Model B 2 gamma_n M |v| = 2 beta sqrt(kn M) = 0.575 N whatever N_c, Model A sqrt(N_c) times
             assert abs(R - data[touching[0] - 1, Z]) < 1e-12
-            full = 2.0 * dem_contact.beta(EN) * math.sqrt(KN * M)
+            full = 2.0 * dem.law.beta(EN) * math.sqrt(KN * M)
             assert force[touching[0] - 1] == pytest.approx(full * (math.sqrt(first) if model == "A" else 1.0),
                                                            rel=1e-6)
             e, w = rows[model, N][:2]
@@ -363,7 +363,7 @@ def own_impulse(tilt, N, mass, inertia):
     th = math.radians(tilt)
     r, zl = (L / 2.0, 0.0) if N == 9 else (L / 4.0, L / 4.0)
     d = (R - r) * math.cos(th) - zl * math.sin(th)
-    z = dem_contact.beta(EN) * math.sqrt(1.0 + mass * d * d / inertia)
+    z = dem.law.beta(EN) * math.sqrt(1.0 + mass * d * d / inertia)
     e = math.exp(-math.pi * z / math.sqrt(1.0 - z * z))
     p = (1.0 + e) * mass * inertia / (inertia + mass * d * d)
     return -1.0 + p / mass, -d * p / inertia

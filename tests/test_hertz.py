@@ -1,4 +1,4 @@
-"""Hertz-Mindlin from material parameters (`model hertz`, dem_contact/hertz.py, `hertz` in law.pxd) against
+"""Hertz-Mindlin from material parameters (`model hertz`, dem/law/hertz.py, `hertz` in dem/law/normal.pxd) against
 closed-form Hertz impacts, pair (two equal spheres, R* = R/2, m* = m/2) and wall (R* = R, m* = m).
 
 Closed forms (elastic, en = 1), written here from the textbook, not taken from the code under test:
@@ -20,8 +20,8 @@ import numpy as np
 import pytest
 
 import dem
-import dem_contact
-from dem_contact import hertz
+import dem.law
+from dem.law import hertz
 
 R, RHO, E, NU, V = 0.005, 2500.0, 1e7, 0.3, 1.0
 M = RHO * 4.0 / 3.0 * math.pi * R ** 3
@@ -208,14 +208,14 @@ def test_hooke_from_hertz_tool_from_every_entry_point(tmp_path):
 
 def test_hooke_rows_are_unchanged_by_the_hertz_columns():
     """A Hooke line makes the same row as before model hertz existed (its columns stay 0: MODEL_HOOKE)."""
-    r = dem_contact.row(dem_contact.parse("kn 1e5 en 0.5 mu 0.3 ks 2e4".split(), "pair_coeff"))
-    assert r[dem_contact.MODEL] == dem_contact.MODEL_HOOKE == 0
-    assert r[dem_contact.YSTAR] == r[dem_contact.GSTAR] == 0
-    h = dem_contact.row(dem_contact.parse(f"mu 0.3 nu {NU} en 0.5 model hertz E {E}".split(), "pair_coeff"))
-    assert h[dem_contact.MODEL] == dem_contact.MODEL_HERTZ
+    r = dem.law.row(dem.law.parse("kn 1e5 en 0.5 mu 0.3 ks 2e4".split(), "pair_coeff"))
+    assert r[dem.law.NORMAL] == dem.law.PARTS["normal"]["hooke"] == 0
+    assert r[dem.law.YSTAR] == r[dem.law.GSTAR] == 0
+    h = dem.law.row(dem.law.parse(f"mu 0.3 nu {NU} en 0.5 model hertz E {E}".split(), "pair_coeff"))
+    assert h[dem.law.NORMAL] == dem.law.PARTS["normal"]["hertz"]
     G = E / (2 * (1 + NU))
-    assert math.isclose(h[dem_contact.YSTAR], YSTAR) and math.isclose(h[dem_contact.GSTAR], G / (2 * (2 - NU)))
-    assert h[dem_contact.KN] == h[dem_contact.KS] == 0
+    assert math.isclose(h[dem.law.YSTAR], YSTAR) and math.isclose(h[dem.law.GSTAR], G / (2 * (2 - NU)))
+    assert h[dem.law.KN] == h[dem.law.KS] == 0
 
 
 BOX = """boundary f f f

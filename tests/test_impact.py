@@ -34,7 +34,7 @@ import numpy as np
 import pytest
 
 import dem
-import dem_contact
+import dem.law
 
 TOL = 5e-3            # the acceptance tolerance of issue 2 (0.5 %)
 # steps per contact at which the worst sub-step phase is inside TOL with margin (table in the docstring)
@@ -48,7 +48,7 @@ def sphere_mass(r, rho):
 
 def closed_form(kn, en, meff):
     w0 = math.sqrt(kn / meff)
-    g = dem_contact.beta(en) * w0
+    g = dem.law.beta(en) * w0
     tc = math.pi / math.sqrt(w0 * w0 - g * g)
     return w0, g, tc
 
@@ -277,7 +277,7 @@ def test_wall_critical_damping_en_zero():
     kn, R, rho, v0 = 1e4, 0.5, 1.0, 0.5
     m = sphere_mass(R, rho)
     w0 = math.sqrt(kn / m)
-    assert dem_contact.beta(0.0) == 1.0
+    assert dem.law.beta(0.0) == 1.0
     dt = 1.0 / (400 * w0)
     sim = dem.Simulation(screen=False)
     sim.commands(f"""

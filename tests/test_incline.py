@@ -9,7 +9,7 @@ import os
 import numpy as np
 
 import dem
-import dem_contact
+import dem.law
 
 HERE = os.path.dirname(__file__)
 SCRIPT = os.path.join(HERE, os.pardir, "inputs", "in.incline")
@@ -46,8 +46,8 @@ def test_incline_input_runs(tmp_path):
     tst = math.sqrt(deq) / 800 * 10
     assert math.isclose(sim.update.dt, tst / 10, rel_tol=1e-12)
     row = sim.pair.table[1, 1]
-    assert math.isclose(row[dem_contact.KN], V / (2 * tst ** 2), rel_tol=1e-12)
-    assert (row[dem_contact.BETA], row[dem_contact.BETA_T], row[dem_contact.MU]) == (1.0, 1.0, 0.4)
+    assert math.isclose(row[dem.law.KN], V / (2 * tst ** 2), rel_tol=1e-12)
+    assert (row[dem.law.BETA], row[dem.law.BETA_T], row[dem.law.MU]) == (1.0, 1.0, 0.4)
     assert sim.pair.law == "descantes"
     g = sim.modify.find("gravity").g
     assert np.allclose(g, [0, math.sin(math.radians(42)), -math.cos(math.radians(42))], rtol=0, atol=1e-15)

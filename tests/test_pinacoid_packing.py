@@ -9,7 +9,7 @@ import shutil
 import numpy as np
 
 import dem
-import dem_contact
+import dem.law
 
 SCRIPT = os.path.join(os.path.dirname(__file__), os.pardir, "inputs", "in.pinacoid_packing")
 
@@ -35,7 +35,7 @@ def test_pinacoid_packing_input_runs(tmp_path):
     deq = (6 * V / math.pi) ** (1 / 3)
     tst = math.sqrt(deq) / 400 * 10
     assert math.isclose(sim.update.dt, tst / 80, rel_tol=1e-12)
-    assert math.isclose(sim.pair.table[1, 1, dem_contact.KN], V / (2 * tst ** 2), rel_tol=1e-12)
+    assert math.isclose(sim.pair.table[1, 1, dem.law.KN], V / (2 * tst ** 2), rel_tol=1e-12)
     assert sim.atom.natoms == 60 and sim.pair.law == "descantes"
     for name in ("tiny.profile.dat", "tiny.rdf.dat", "tiny.restart", "tiny.h5", "tiny.xdmf", "tiny_0.png"):
         assert (tmp_path / name).exists(), name
@@ -115,7 +115,7 @@ def test_pinacoid_packing_stiffens_a_softer_bed(tmp_path):
     V = (0.5 ** 1.5) / 6 * (3 - 1 / math.tan(math.pi / 3))
     tin = math.sqrt((6 * V / math.pi) ** (1 / 3))
     kn = V / (2 * (tin / 400 * math.sqrt(10)) ** 2)
-    assert math.isclose(stiff.pair.table[1, 1, dem_contact.KN], kn, rel_tol=1e-12)
+    assert math.isclose(stiff.pair.table[1, 1, dem.law.KN], kn, rel_tol=1e-12)
     assert math.isclose(stiff.modify.find("floor").law["kn"], kn, rel_tol=1e-12)
     dt = stiff.update.dt
     nlast = 100 * round(0.25 * tin / dt / 100)                    # the averaging window (rest 1)

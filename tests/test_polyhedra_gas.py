@@ -39,7 +39,7 @@ import numpy as np
 import pytest
 
 import dem
-import dem_contact
+import dem.law
 
 STEPS = 20_000
 EVERY = 10
@@ -75,7 +75,7 @@ shape p pinacoid 0.0022 0.0022 0.0022
                          f"v {words(v[k])} omega {words(w)}\n")
                 k += 1
     m_tet = 1250 * 0.003 ** 3 / (6 * 2 ** 0.5)
-    tc = dem_contact.contact_time(1e5, 1.0, m_tet / 2)
+    tc = dem.law.contact_time(1e5, 1.0, m_tet / 2)
     return text + f"""pair_style polyhedron/multipoint
 pair_coeff * * kn 1e5 en 1.0 mu 0.0
 fix integrate all nve/shape

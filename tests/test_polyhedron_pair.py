@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import dem
-import dem_contact
+import dem.law
 
 HEAD = """units si
 boundary f f f
@@ -199,7 +199,7 @@ shape p pinacoid 0.002 0.001 0.0007
         x = [float(c) for c in x]
         text += (f"create_atoms 1 single {x[0]!r} {x[1]!r} {x[2]!r} shape {name} density 1250 quat {qs} "
                  f"v {v[0]} {v[1]} {v[2]} omega {rng.normal() * 50!r} {rng.normal() * 50!r} {rng.normal() * 50!r}\n")
-    tc = dem_contact.contact_time(1e5, 1.0, 0.5e-5)
+    tc = dem.law.contact_time(1e5, 1.0, 0.5e-5)
     text += f"""pair_style polyhedron/multipoint
 pair_coeff * * kn 1e5 en 1.0 mu 0.0
 fix integrate all nve/shape
@@ -230,7 +230,7 @@ def test_elastic_edge_face_collision_energy():
     deepest overlap, the exact gradient would push at the deepest end only), so the energy error does not
     vanish with dt: measured 1.7e-4, 1.9e-4, 1.6e-4 at T_c/100, /200, /400 (3.6e-5 with a spin of 20 rad/s).
     Bound: the brief's 1e-3."""
-    tc = dem_contact.contact_time(1e5, 1.0, 0.5e-5)
+    tc = dem.law.contact_time(1e5, 1.0, 0.5e-5)
     th = 0.05
     sim = _run(f"""units si
 boundary f f f

@@ -1,5 +1,5 @@
 """fix wall/plane ... point multipoint law descantes: Descantes' eq. 3 at the wall's contact points (the
-shared law of `pair_style polyhedron/multipoint law descantes`, dem_contact/law.pxd): no attraction,
+shared law of `pair_style polyhedron/multipoint law descantes`, dem.law.descantes): no attraction,
 viscous tangential force capped by Coulomb, no spring.
 
 Units: a cube of side 2 mm, density 1250 (m = 1e-5 kg), kn = 1e5 N/m, dt = 2e-6 s (contact time

@@ -6,12 +6,12 @@
 (also `python -m dem.tools.hooke_from_hertz ...`, or `python tools/hooke_from_hertz.py ...` in the source
 tree.) kn gives the same largest overlap as Hertz-Mindlin of that material for two equal spheres (or a
 sphere and a wall of the same material, --wall) meeting at speed v; dt is the Hooke contact time / steps.
-The function is dem_contact.hertz.hooke_equivalent; docs/hertz.md gives the formulas."""
+The function is dem.law.hertz.hooke_equivalent; docs/hertz.md gives the formulas."""
 import argparse
 import sys
 
 from dem.errors import DemError
-from dem_contact.hertz import hooke_equivalent
+from dem.law.hertz import hooke_equivalent
 
 
 def main(argv=None):

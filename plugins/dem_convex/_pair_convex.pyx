@@ -2,7 +2,7 @@
 """Contacts between convex particles (shape table rows) and spheres: bounding-sphere broad phase, then
 either the analytic sphere geometry (two spheres) or the Grains3D crust contact (dem/contact/_gjk.pyx: GJK
 on the shrunk cores, EPA when the cores overlap), one contact point per pair, and the shared law
-(dem_contact/apply.pxd).
+(dem/law/apply.pxd).
 
 A scaled body is handed to GJK as its unscaled shape with the rotation matrix multiplied by the scale s:
 the support point of s R K in direction d is s R s_K(R^T d) (support functions ignore the length of the
@@ -28,8 +28,9 @@ from dem.contact._gjk cimport crust_contact, CONTACT_NONE, CONTACT_CRUST, NFEAT
 from dem.shapes._support cimport (ShapeRef, Kind, quat_to_rot, support_world, polytope_core, box_corners,
                                   corner_box, MARGIN, NPARAM, NCORNER)
 from dem.shapes._table cimport ShapeView, TableView, core_ref, equivalent_radius, round_body
-from dem_contact.apply cimport Body, apply_pair, contact_radius
-from dem_contact.law cimport XI_WIDTH, forget
+from dem.law.apply cimport Body, apply_pair, bind_body, contact_radius
+from dem.law.law cimport forget
+from dem.law.row cimport XI_WIDTH
 
 ctypedef cnp.int64_t i64
 
@@ -242,6 +243,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
     con.central = False
     con.key = 0
     con.weight = 1.0
+    con.inertia = 0.0
     with nogil:
         for i in range(P.nlocal):        # pass 1: margins (branch-free: the outcome is unpredictable)
             mi = move[i]
@@ -283,7 +285,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     hist[k, TAG] = fabs(hist[k, TAG])
                     _forget_points(&hist[k, FEAT], T, si, sj)
                     if use_xi:
-                        forget(&hist[k, 0])
+                        forget(&hist[k, 0], XI_WIDTH)
                 continue
             sph_j = round_body(T, sj)
             if sph_i and sph_j:
@@ -330,7 +332,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                                 hist[k, AXIS + d] = g[d]
                         _forget_points(&hist[k, FEAT], T, si, sj)
                         if use_xi:
-                            forget(&hist[k, 0])
+                            forget(&hist[k, 0], XI_WIDTH)
                     continue
                 ngjk += 1
                 if advance:
@@ -356,7 +358,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                             hist[k, AXIS + d] = g[d] * gn
                 if code == CONTACT_NONE:
                     if use_xi and advance:
-                        forget(&hist[k, 0])
+                        forget(&hist[k, 0], XI_WIDTH)
                     continue
                 if code > 1:
                     nepa += 1
@@ -368,18 +370,10 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 worst[0] = i
                 worst[1] = j
             meff = P.rmass[i] * P.rmass[j] / (P.rmass[i] + P.rmass[j])
+            bind_body(&A, P, i)
             A.x = xi
-            A.v = &P.v[3 * i]
-            A.w = &P.omega[3 * i]
-            A.f = &P.f[3 * i]
-            A.t = &P.torque[3 * i]
-            A.s = &P.stress[9 * i] if P.stress != NULL else NULL
+            bind_body(&B, P, j)
             B.x = xj
-            B.v = &P.v[3 * j]
-            B.w = &P.omega[3 * j]
-            B.f = &P.f[3 * j]
-            B.t = &P.torque[3 * j]
-            B.s = &P.stress[9 * j] if P.stress != NULL else NULL
             # rolling resistance between spheres only (as pair sphere); none for shaped bodies (Part III)
             cf = &coeff[P.type[i], P.type[j], 0]
             energy += apply_pair(cf, &con, &A, &B, meff,

@@ -4,7 +4,7 @@ particles' bounding spheres (the neighbor list), then the bounding spheres of th
 composite's components; any other particle is its own single piece), then the crust contact (GJK on the
 shrunk cores, EPA when the cores overlap; dem/contact/_gjk.pyx) per piece pair, or the analytic contact
 of two balls (sphere pieces: multisphere clumps). Every contact point goes through the shared law
-(dem_contact/apply.pxd) with levers from the centres of mass of the whole particles; Model B weighs each
+(dem/law/apply.pxd) with levers from the centres of mass of the whole particles; Model B weighs each
 of the N_c points of a particle pair by 1/N_c (eq. 20-21); Model A sums them (weight 1) with the damping of
 each point from m_ij / N_c, i.e. gamma_n / sqrt(N_c) (eq. 18), so that the restitution stays e_n.
 
@@ -27,8 +27,9 @@ from dem.shapes._table cimport (ShapeView, TableView, core_ref, equivalent_radiu
                                component_row,
                                 pose_component)
 from dem.contact._bounds cimport boxes_apart
-from dem_contact.apply cimport Body, apply_pair, contact_radius
-from dem_contact.law cimport XI_WIDTH, forget
+from dem.law.apply cimport Body, apply_pair, bind_body, contact_radius
+from dem.law.law cimport forget
+from dem.law.row cimport XI_WIDTH
 
 ctypedef cnp.int64_t i64
 
@@ -246,7 +247,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                         r = sqrt(r2)
                         if r >= rsum or r == 0.0:
                             if use_xi:
-                                forget(rec)
+                                forget(rec, XI_WIDTH)
                             continue
                         for d in range(3):
                             con[npt].n[d] = dx[d] / r
@@ -283,7 +284,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                                 rec[AXIS + d] = g[d] * gn
                         if code == CONTACT_NONE:
                             if use_xi:
-                                forget(rec)
+                                forget(rec, XI_WIDTH)
                             continue
                         if code > 1:
                             nepa += 1.0
@@ -305,18 +306,8 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 meff = P.rmass[i] * P.rmass[j] / (P.rmass[i] + P.rmass[j])
                 if not model_b:                # eq. 18: gamma_n of N_c summed springs
                     meff /= npt
-                A.x = &P.x[3 * i]
-                A.v = &P.v[3 * i]
-                A.w = &P.omega[3 * i]
-                A.f = &P.f[3 * i]
-                A.t = &P.torque[3 * i]
-                A.s = &P.stress[9 * i] if P.stress != NULL else NULL
-                B.x = &P.x[3 * j]
-                B.v = &P.v[3 * j]
-                B.w = &P.omega[3 * j]
-                B.f = &P.f[3 * j]
-                B.t = &P.torque[3 * j]
-                B.s = &P.stress[9 * j] if P.stress != NULL else NULL
+                bind_body(&A, P, i)
+                bind_body(&B, P, j)
                 # rolling resistance between two plain spheres only (as pair sphere); none for shaped bodies
                 cf = &coeff[P.type[i], P.type[j], 0]
                 reff = contact_radius(cf, round_body(T, P.shape[i]) and round_body(T, P.shape[j]),
@@ -324,6 +315,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                                       equivalent_radius(T, P.shape[j], P.radius[j]))
                 for q in range(npt):
                     con[q].weight = weight
+                    con[q].inertia = 0.0
                     energy += apply_pair(cf, &con[q], &A, &B, meff, reff, recs[q] if use_xi else NULL, dt,
                                          advance, out)
             if resume >= 0 or h.error:

@@ -7,7 +7,7 @@ from dem.errors import DemError
 from dem.history import KeyedHistory
 from dem.pair import Pair
 from dem.shapes.base import GLUED
-from dem_contact.pair_coeffs import PairCoefficients
+from dem.law.pair_coeffs import PairCoefficients
 
 from . import _pair_glued
 

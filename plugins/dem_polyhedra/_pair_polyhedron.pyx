@@ -13,9 +13,10 @@ Per listed pair whose bounding spheres overlap (and, two polytopes, whose boundi
 * a sphere and a polytope: crust_contact (dem/contact/_gjk.pyx) of the sharp body (crust 0) and the
   sphere's centre (a point core of crust = its radius): one point;
 * two spheres: analytic, one point.
-Every point goes through the shared law (dem_contact/apply.pxd) with levers from the centres of mass and
-weight 1/alpha: the Grains3D law (Model B averaging on the points) or, with `law` LAW_DESCANTES, Descantes'
-eq. 3 (dem_contact/law.pxd: no attraction, viscous friction capped by Coulomb, no spring, no history).
+Every point goes through the shared law (dem/law/apply.pxd) with levers from the centres of mass and
+weight 1/alpha: the Grains3D law (Model B averaging on the points) or, with the style's `law descantes`,
+rows of Descantes' eq. 3 (dem.law.descantes: no attraction, viscous friction capped by Coulomb, no spring,
+no history).
 
 History (keyed, only with a tangential spring ks > 0): one record per contact point: xi (XI_WIDTH values)
 then the point in the body frame of the list's owner i (unscaled, unrotated: R^T (p - x_i) / s_i). A new
@@ -36,8 +37,8 @@ from dem.contact._polytope cimport (Polytope, TopoTable, SatResult, PolyContact,
                                     PC_FACE_FACE)
 from dem.shapes._support cimport ShapeRef, Kind, quat_to_rot, NPARAM
 from dem.shapes._table cimport ShapeView, TableView, body_ref, equivalent_radius, round_body
-from dem_contact.apply cimport Body, apply_pair_law, contact_radius
-from dem_contact.law cimport XI_WIDTH, LAW_GRAINS3D, LAW_DESCANTES
+from dem.law.apply cimport Body, apply_pair, bind_body, contact_radius
+from dem.law.row cimport XI_WIDTH
 
 ctypedef cnp.int64_t i64
 
@@ -53,7 +54,6 @@ cdef double MARGIN_SAFETY = 1e-12  # margins are kept this much (relative to rsu
 
 cdef double POINT_PARAMS[NPARAM]   # a sphere of radius 0 (zero-initialised)
 
-LAWS = {"grains3d": LAW_GRAINS3D, "descantes": LAW_DESCANTES}
 RECW = 10                          # a recorded contact point: x y z, normal (3), force on i (3), overlap
 STATS = ("contacts", "points", "max_overlap", "energy", "vertex_face", "edge_edge", "edge_face", "face_face",
          "sphere", "face_face_points")
@@ -154,7 +154,7 @@ cdef inline i64 _match(const KeyedView* h, i64 k, const double* b, double tol2, 
 def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, const double[:, :, ::1] coeff,
             ShapeView shapes, const double[:, ::1] rot, const double[::1] move,
             double[::1] margin, double[::1] stats, KeyedBuffers hist, bint use_xi, double ftol_rel, double dt,
-            bint advance, int law, double[:, ::1] rec, i64[:, ::1] rec_ij, i64[::1] nrec, i64 start):
+            bint advance, double[:, ::1] rec, i64[:, ::1] rec_ij, i64[::1] nrec, i64 start):
     """Adds the contact forces and torques of list entries from `start` on; returns -1, or the entry to
     resume from when the history buffer is full (dem/_history.pxd). stats receives STATS (summed; the
     caller resets them once per step). With rows in `rec`, every contact point is recorded there (RECW
@@ -315,25 +315,16 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     P.ctypes[5 * j + q] += 1.0
                 weight = 1.0 / npt
                 meff = P.rmass[i] * P.rmass[j] / (P.rmass[i] + P.rmass[j])
-                BA.x = &P.x[3 * i]
-                BA.v = &P.v[3 * i]
-                BA.w = &P.omega[3 * i]
-                BA.f = &P.f[3 * i]
-                BA.t = &P.torque[3 * i]
-                BA.s = &P.stress[9 * i] if P.stress != NULL else NULL
-                BB.x = &P.x[3 * j]
-                BB.v = &P.v[3 * j]
-                BB.w = &P.omega[3 * j]
-                BB.f = &P.f[3 * j]
-                BB.t = &P.torque[3 * j]
-                BB.s = &P.stress[9 * j] if P.stress != NULL else NULL
+                bind_body(&BA, P, i)
+                bind_body(&BB, P, j)
                 cf = &coeff[P.type[i], P.type[j], 0]
                 reff = contact_radius(cf, ri and rj, equivalent_radius(T, si, P.radius[i]),
                                       equivalent_radius(T, sj, P.radius[j]))
                 for q in range(npt):
                     con[q].weight = weight
                     con[q].central = False
-                    stats[3] += apply_pair_law(cf, &con[q], &BA, &BB, meff, reff, recs[q], dt, advance, out, law)
+                    con[q].inertia = 0.0
+                    stats[3] += apply_pair(cf, &con[q], &BA, &BB, meff, reff, recs[q], dt, advance, out)
                     if rec.shape[0] > 0:
                         r = nrec[0]
                         for d in range(3):

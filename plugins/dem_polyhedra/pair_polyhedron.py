@@ -5,13 +5,14 @@ from dem import shape_command
 from dem._particles import ParticleView
 from dem.errors import DemError
 from dem.history import KeyedHistory
+from dem.law.pair_coeffs import PairCoefficients
 from dem.pair import Pair
-from dem_contact.pair_coeffs import PairCoefficients
 from dem_convex import _pair_convex
 
 from . import _pair_polyhedron
 
 TYPES = ("vertex_face", "edge_edge", "edge_face", "face_face", "sphere")   # "sphere": a pair with a sphere
+LAWS = ("grains3d", "descantes")     # the `law` keyword (dem.law.descantes)
 FTOL = 1e-9      # contacting-feature tolerance, per unit of the two bounding radii (dem.contact.polytope)
 
 
@@ -68,7 +69,7 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
                 raise DemError(f"pair_style polyhedron/multipoint: unknown or incomplete argument '{args[i]}'; "
                                f"usage: {usage}")
             if args[i] == "law":
-                if args[i + 1] not in _pair_polyhedron.LAWS:
+                if args[i + 1] not in LAWS:
                     raise DemError(f"pair_style polyhedron/multipoint: law is grains3d or descantes, got '{args[i + 1]}'")
                 self.law = args[i + 1]
             else:
@@ -98,7 +99,7 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         return True
 
     def init(self):
-        self.use_xi = self.check_coefficients() and self.law == "grains3d"
+        self.use_xi = self.check_coefficients()       # Descantes' rows keep none (dem.law.descantes)
         sim = self.sim
         atom = sim.atom
         self.shape_view = shape_command.pair_shape_view(sim)
@@ -125,8 +126,7 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         def run(start):
             resume = _pair_polyhedron.compute(
                 view, nb.offsets, nb.neigh, self.table, self.shape_view, w.rot, w.move, w.margin,
-                st, buffers, use_xi, self.ftol, self.sim.update.dt, advance, _pair_polyhedron.LAWS[self.law],
-                self._rec, self._rec_ij, self._nrec, start)
+                st, buffers, use_xi, self.ftol, self.sim.update.dt, advance, self._rec, self._rec_ij, self._nrec, start)
             if self._nrec[1]:                  # the points buffer was full: grow it, resume at that entry
                 self._nrec[1] = 0
                 self._grow_points(2 * len(self._rec) + 16 * MAXP)

@@ -4,9 +4,9 @@ import numpy as np
 from dem._particles import ParticleView
 from dem.errors import DemError
 from dem.history import History
+from dem.law import XI_WIDTH
+from dem.law.pair_coeffs import PairCoefficients
 from dem.pair import Pair
-from dem_contact import XI_WIDTH
-from dem_contact.pair_coeffs import PairCoefficients
 
 from . import _pair_sphere
 
@@ -48,6 +48,7 @@ class PairSphere(PairCoefficients, Pair):
 
 
     style = "sphere"
+    max_history = None               # any layout of the law's history (dem.law.history_layout)
     tallies = ("stress", "count")    # per-particle contact tallies for analysis (dem/tally.py)
 
     def __init__(self, sim, args):
@@ -66,8 +67,14 @@ class PairSphere(PairCoefficients, Pair):
         if self.sim.comm.any(bool(np.any(atom.data["shape"][:atom.nlocal] >= 0))):
             raise DemError("pair_style sphere treats every particle as a sphere, but some particles have a "
                            "shape", hint="use pair_style convex/gjk for shaped particles")
+        width = self.history_width
+        if self.history is not None and (not need_history or self.history.nvalues != width):
+            self.history.discard()          # the law changed: its history has another layout
+            self.sim.neighbor.histories.remove(self.history)
+            self.history = None
         if need_history and self.history is None:
-            self.history = History(self.sim, "pair_xi", XI_WIDTH)
+            # the tangential spring alone keeps the name restarts have always used
+            self.history = History(self.sim, "pair_xi" if width == XI_WIDTH else f"pair_law{width}", width)
             self.sim.neighbor.histories.append(self.history)
 
     def compute(self, advance=True):

@@ -2,7 +2,7 @@
 ends) and `wall/mesh` (a rigid triangle mesh from STL or OBJ, at rest or moving). The plane and drum walls
 are sets of surfaces (dem/contact/_surface.pxd) handed to one kernel (`_walls.pyx`), a new such style
 builds its surfaces table in a subclass of WallFix; the mesh has its own kernel (`_wall_mesh.pyx`). All
-apply the shared law (dem_contact/apply.pxd)."""
+apply the shared law (dem/law/apply.pxd)."""
 from dem.hookspecs import hookimpl
 
 from .fix_wall_drum import FixWallDrum

@@ -38,8 +38,9 @@ from dem.contact._gjk cimport gjk_distance, epa_penetration, Simplex, GJK_SEPARA
 from dem.shapes._support cimport ShapeRef, SPHERE, BOX, POLYHEDRON, MARGIN, NPARAM, support_world, vertex_world
 from dem.shapes._table cimport (ShapeView, TableView, body_ref, equivalent_radius, pose_body, round_body,
                                 ncomponents, component_row, pose_component)
-from dem_contact.apply cimport Body, apply_wall_law, contact_radius
-from dem_contact.law cimport XI_WIDTH, forget
+from dem.law.apply cimport Body, apply_wall, bind_body, contact_radius
+from dem.law.law cimport forget
+from dem.law.row cimport XI_WIDTH
 
 ctypedef cnp.int64_t i64
 
@@ -375,7 +376,7 @@ cdef int _vertices_beyond(const ShapeRef* S, const double* R, const double* x, c
 
 def mesh_walls(ParticleView view, int groupbit, MeshIndex mesh, const double[::1] pose,
                const double[:, ::1] coeff, ShapeView shapes, double[:, ::1] hist, bint use_history,
-               double dt, bint advance, bint multi, bint average, int law, i64 token, double[::1] stats):
+               double dt, bint advance, bint multi, bint average, i64 token, double[::1] stats):
     """The mesh's forces on the particles of groupbit (see the module doc). pose: NPOSE values (POSE).
     coeff[type]: the law row. hist: HISTORY_WIDTH values per particle (use_history). multi: multipoint
     polytopes. average: Model B over a composite's contacts with the mesh (else Model A). token: a number
@@ -610,7 +611,7 @@ def mesh_walls(ParticleView view, int groupbit, MeshIndex mesh, const double[::1
                                 sl[1 + d] = hits[j].n[d]
                         xi = &sl[4]
                 _apply_hit(&hits[j], i, s, sphere, P, Tb, M, C0, centre, &pose[0], Rr, xr, &coeff[P.type[i], 0],
-                           xi, dt, advance, law, average, nkeep, tol, &V[tris[hits[j].tri, 0], 0], &A, &B, &con,
+                           xi, dt, advance, average, nkeep, tol, &V[tris[hits[j].tri, 0], 0], &A, &B, &con,
                            vw, force, torque, &energy, &ncont)
                 ov = hits[j].delta / (2.0 * r)
                 if ov > maxov:
@@ -621,7 +622,7 @@ def mesh_walls(ParticleView view, int groupbit, MeshIndex mesh, const double[::1
                     if not used[k] and sl[0] != 0.0:
                         for d in range(4):
                             sl[d] = 0.0
-                        forget(&sl[4])
+                        forget(&sl[4], XI_WIDTH)
     free(hits)
     stats[M_CONTACTS] = ncont
     stats[M_MAXOV] = maxov
@@ -636,7 +637,7 @@ def mesh_walls(ParticleView view, int groupbit, MeshIndex mesh, const double[::1
 cdef void _apply_hit(const Hit* hit, int i, int s, bint sphere, const Particles* P, const TableView* Tb,
                      const double* M, const double* C0, const double* centre, const double* pose,
                      const double* Rr, const double* xr, const double* cf, double* xi, double dt,
-                     bint advance, int law, bint average, int nkeep, double tol, const double* v0,
+                     bint advance, bint average, int nkeep, double tol, const double* v0,
                      Body* A, Body* B, Contact* con, double* vw, double* force, double* torque,
                      double* energy, double* ncont) noexcept nogil:
     """The law at a kept hit (or at each of its multipoint vertices), in the world frame; the reactions
@@ -664,13 +665,9 @@ cdef void _apply_hit(const Hit* hit, int i, int s, bint sphere, const Particles*
     con.central = sphere
     con.key = 0
     con.weight = weight
+    con.inertia = 0.0        # no rolling dashpot (the mesh keeps no rolling history)
     con.arm_a = P.radius[i] - 0.5 * hit.delta
-    A.x = &P.x[3 * i]
-    A.v = &P.v[3 * i]
-    A.w = &P.omega[3 * i]
-    A.f = &P.f[3 * i]
-    A.t = &P.torque[3 * i]
-    A.s = &P.stress[9 * i] if P.stress != NULL else NULL
+    bind_body(A, P, i)
     if many:
         body_ref(Tb, component_row(Tb, s, hit.piece), &S)
         pose_component(Tb, s, hit.piece, Rr, xr, Rc, xc)
@@ -693,9 +690,9 @@ cdef void _apply_hit(const Hit* hit, int i, int s, bint sphere, const Particles*
         vw[0] = pose[POSE_V] + pose[POSE_W + 1] * lw[2] - pose[POSE_W + 2] * lw[1]
         vw[1] = pose[POSE_V + 1] + pose[POSE_W + 2] * lw[0] - pose[POSE_W] * lw[2]
         vw[2] = pose[POSE_V + 2] + pose[POSE_W] * lw[1] - pose[POSE_W + 1] * lw[0]
-        energy[0] += apply_wall_law(cf, con, A, B, m,
-                                    contact_radius(cf, sphere, equivalent_radius(Tb, s, P.radius[i]), -1.0),
-                                    xi, dt, advance, out, law)
+        energy[0] += apply_wall(cf, con, A, B, m,
+                                contact_radius(cf, sphere, equivalent_radius(Tb, s, P.radius[i]), -1.0),
+                                xi, dt, advance, out)
         ncont[0] += 1.0
         for d in range(3):
             force[d] -= out[d]

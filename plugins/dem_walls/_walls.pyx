@@ -1,8 +1,8 @@
 # cython: language_level=3
 """The wall kernel of every wall fix (wall/plane, wall/drum): particles of a group against a set of
 surfaces (planes and the inside of cylinders, at rest or turning; dem/contact/_surface.pxd), one contact
-per particle and surface, the shared law (dem_contact/apply.pxd: Grains3D, or Descantes' eq. 3 with the
-fixes' `law descantes`) with m_ij = m_i.
+per particle and surface, the shared law (dem/law/apply.pxd: the row's parts; the fixes' `law descantes` makes
+the rows Descantes' eq. 3) with m_ij = m_i.
 
 Spheres: analytic, the contact point midway in the overlap, levers along the normal, rolling resistance
 (mu_roll r_i |F_n| against the spin relative to the wall). Shaped particles: their true body's deepest
@@ -20,8 +20,9 @@ from dem.contact._surface cimport (Surface, S_CYLINDER, S_A, S_SIDE, S_POS, S_R,
 from dem.shapes._support cimport ShapeRef, BOX, POLYHEDRON, MARGIN
 from dem.shapes._table cimport (ShapeView, TableView, body_ref, equivalent_radius, pose_body, round_body, ncomponents,
                                 component_row, pose_component)
-from dem_contact.apply cimport Body, apply_wall_law, contact_radius
-from dem_contact.law cimport XI_WIDTH, LAW_GRAINS3D, LAW_DESCANTES, forget
+from dem.law.apply cimport Body, apply_wall, bind_body, contact_radius
+from dem.law.law cimport forget, bonded, reach
+from dem.law.row cimport C_ETA_ROLL
 
 ctypedef cnp.int64_t i64
 
@@ -39,10 +40,10 @@ cdef enum:                 # what the kernel sums into stats
 # the enums above, for Python (dem_walls.wall_fix)
 SURFACE = {"CYLINDER": S_CYLINDER, "A": S_A, "SIDE": S_SIDE, "POS": S_POS, "R": S_R, "CENTRE": S_CENTRE,
            "SPIN": S_SPIN, "OMEGA": S_OMEGA, "NCOL": S_NCOL}
-LAWS = {"grains3d": LAW_GRAINS3D, "descantes": LAW_DESCANTES}     # the `law` keyword of the wall fixes
 STAT = {"CONTACTS": W_CONTACTS, "MAXOV": W_MAXOV, "ENERGY": W_ENERGY, "TORQUE": W_TORQUE, "WORST_I": W_WORST_I,
         "WORST_W": W_WORST_W, "WORST_GAP": W_WORST_GAP, "BEHIND": W_BEHIND, "NSTAT": W_NSTAT}
 
+cdef double ROLL_INERTIA = 1.4       # I + m r^2 of a solid sphere about a point of its surface, / (m r^2)
 cdef double TIE_BIAS = 1e-9          # relative tilt of the support direction that breaks ties (plane_touch)
 cdef double ZERO[3]
 ZERO[:] = [0.0, 0.0, 0.0]
@@ -93,22 +94,22 @@ cdef inline int _vertices_beyond(const ShapeRef* S, const double* R, const doubl
 
 
 def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const double[:, :, ::1] coeff,
-          ShapeView shapes, double[:, ::1] xi, bint use_history, double dt, bint advance, int point,
-          bint average, int law, double[::1] stats):
-    """surfaces: rows of S_NCOL values (SURFACE). coeff[w, type]: the law row of surface w. xi: XI_WIDTH
-    history values per surface and piece per particle (piece c of surface w at XI_WIDTH (c nw + w); pieces
-    beyond the array's width keep no spring). point: 0 the deepest point, 1 the centroid of the candidate
+          ShapeView shapes, double[:, ::1] xi, int hw, bint use_history, double dt, bint advance, int point,
+          bint average, double[::1] stats):
+    """surfaces: rows of S_NCOL values (SURFACE). coeff[w, type]: the law row of surface w. xi: hw history
+    values (the law's width) per surface and piece per particle (piece c of surface w at hw (c nw + w);
+    pieces beyond the array's width keep no history). point: 0 the deepest point, 1 the centroid of the candidate
     points beyond the surface, 2 multipoint: a polytope (box, polyhedron) touches at every vertex beyond
     the surface, each with the deepest overlap and a weight 1/alpha, alpha the particle's points against
     that surface (Descantes 2022 eq. 3; no tangential spring: the points are not tracked). average: Model B
-    over the pieces touching one surface. law: LAWS (the Grains3D law, or Descantes' eq. 3 at every point: no
-spring, xi not read). stats: the W_ sums (STAT)."""
+    over the pieces touching one surface. A sphere whose row acts beyond contact (JKR) keeps its contact
+    after it leaves the surface while bonded and within the row's reach. stats: the W_ sums (STAT)."""
     cdef Particles particles = view.p          # local copies: no call can change them (kept in registers)
     cdef const Particles* P = &particles
     cdef TableView table = shapes.t
     cdef const TableView* T = &table
     cdef int i, w, d, s, c, q, npc, row, npt, nw = surfaces.shape[0]
-    cdef int hpieces = xi.shape[1] // (XI_WIDTH * max(nw, 1)) if use_history else 0
+    cdef int hpieces = xi.shape[1] // (hw * max(nw, 1)) if use_history else 0
     cdef double gap, rho, energy = 0.0, torque = 0.0, ncont = 0.0, maxov = 0.0, ov
     cdef double worst_i = -1.0, worst_w = -1.0, worst_gap = 0.0, behind = 0.0
     cdef double p[3]
@@ -147,11 +148,13 @@ spring, xi not read). stats: the W_ sums (STAT)."""
     cdef Body A, B
     cdef bint posed, sphere
     cdef const double* cf
+    cdef double* hs
     for w in range(nw):
         load_surface(&surfaces[w, 0], &surf[w])
     con.key = 0
     con.weight = 1.0
     con.arm_b = 0.0
+    con.inertia = 0.0
     with nogil:
         for i in range(P.nlocal):
             if not (P.mask[i] & groupbit):
@@ -162,11 +165,16 @@ spring, xi not read). stats: the W_ sums (STAT)."""
             posed = False
             for w in range(nw):
                 W = &surf[w]
+                cf = &coeff[w, P.type[i], 0]
                 gap = bound_gap(W, x, &rho)
-                if gap >= P.radius[i] or (sphere and not sphere_normal(W, x, rho, con.n)):
+                hs = &xi[i, hw * w] if hpieces > 0 else NULL
+                # apart: a bonded sphere holds until its reach (R* = R_i), any other contact forgets
+                if (gap >= P.radius[i] and not (sphere and bonded(cf, hs) and gap - P.radius[i] <
+                                                reach(cf, equivalent_radius(T, s, P.radius[i])))) or (
+                        sphere and not sphere_normal(W, x, rho, con.n)):
                     if use_history and advance:
                         for c in range(hpieces):
-                            forget(&xi[i, XI_WIDTH * (c * nw + w)])
+                            forget(&xi[i, hw * (c * nw + w)], hw)
                     continue
                 npt = 0
                 if sphere:
@@ -198,7 +206,7 @@ spring, xi not read). stats: the W_ sums (STAT)."""
                                                          bias if npc > 1 else NULL, pts[npt].n, pts[npt].p)
                         if pts[npt].delta <= 0.0:
                             if use_history and advance and c < hpieces:
-                                forget(&xi[i, XI_WIDTH * (c * nw + w)])
+                                forget(&xi[i, hw * (c * nw + w)], hw)
                             continue
                         if multi and (S.kind == BOX or S.kind == POLYHEDRON) and S.params[MARGIN] == 0.0:
                             k = _vertices_beyond(&S, Rc, xc, W, pts[npt].n, pts[npt].delta, 1e-9 * P.radius[i],
@@ -234,18 +242,16 @@ spring, xi not read). stats: the W_ sums (STAT)."""
                         B.v = ZERO
                         B.w = ZERO
                     B.s = NULL
+                    bind_body(&A, P, i)
                     A.x = x
-                    A.v = &P.v[3 * i]
-                    A.w = &P.omega[3 * i]
-                    A.f = &P.f[3 * i]
-                    A.t = &P.torque[3 * i]
-                    A.s = &P.stress[9 * i] if P.stress != NULL else NULL
-                    cf = &coeff[w, P.type[i], 0]
-                    energy += apply_wall_law(cf, &con, &A, &B,
-                                             P.rmass[i] if average or npt == 1 else P.rmass[i] / npt,
-                                             contact_radius(cf, sphere, equivalent_radius(T, s, P.radius[i]), -1.0),
-                                             &xi[i, XI_WIDTH * (ptc[q] * nw + w)] if 0 <= ptc[q] < hpieces else NULL,
-                                             dt, advance, out, law)
+                    # the rolling inertia about the contact, I + m r^2 (the EPSD dashpot: spheres only)
+                    con.inertia = ROLL_INERTIA * P.rmass[i] * P.radius[i] * P.radius[i] if (
+                        sphere and cf[C_ETA_ROLL] > 0.0) else 0.0
+                    energy += apply_wall(cf, &con, &A, &B,
+                                         P.rmass[i] if average or npt == 1 else P.rmass[i] / npt,
+                                         contact_radius(cf, sphere, equivalent_radius(T, s, P.radius[i]), -1.0),
+                                         &xi[i, hw * (ptc[q] * nw + w)] if 0 <= ptc[q] < hpieces else NULL,
+                                         dt, advance, out)
                     if W.spin >= 0:   # torque about the turning axis: e . (p x F) + e . rolling torque
                         torque += p[(W.spin + 1) % 3] * out[(W.spin + 2) % 3] - p[(W.spin + 2) % 3] * out[(W.spin + 1) % 3]
                         torque += out[3 + W.spin]

@@ -11,9 +11,9 @@ from dem.fix import Fix, Stage
 
 from . import _wall_mesh
 from .mesh import load, read_motion, rotation_about
-from ._walls import LAWS as LAW_CODES
+from dem.law.wall_coeffs import WallCoefficients
+
 from .wall_fix import POINT_MODES, WALL_KEYWORDS, wall_keyword
-from dem_contact.wall_coeffs import WallCoefficients
 
 RPM = 2.0 * math.pi / 60.0
 STAT, POSE = _wall_mesh.STAT, _wall_mesh.POSE
@@ -240,8 +240,7 @@ class FixWallMesh(WallCoefficients, Fix):
         _wall_mesh.mesh_walls(ParticleView(sim.atom), int(self.groupbit), self.index, self.pose(), self.table[0],
                               self.shape_view, self.history(), self.use_history, sim.update.dt, advance,
                               self.point == POINT_MODES.index("multipoint"),
-                              bool(getattr(sim.pair, "multipoint_average", True)), LAW_CODES[self.contact_law],
-                              self.token, self.stats)
+                              bool(getattr(sim.pair, "multipoint_average", True)), self.token, self.stats)
         self.token += max(sim.atom.nlocal, 1)
         self.ncontacts = int(self.stats[STAT["CONTACTS"]])
         self.max_overlap = float(self.stats[STAT["MAXOV"]])

@@ -2,12 +2,11 @@
 and the call of the wall kernel on the fix's surfaces table."""
 import numpy as np
 
-import dem_contact
-
 from dem import shape_command
 from dem._particles import ParticleView
 from dem.errors import DemError
-from dem_contact.wall_coeffs import WallCoefficients
+from dem.law import WORDS
+from dem.law.wall_coeffs import WallCoefficients
 
 from . import _walls
 from ._walls import STAT, SURFACE as S
@@ -37,7 +36,7 @@ def turning(row, axis, centre, omega):
 
 
 POINT_MODES = ("deepest", "centroid", "multipoint")   # `point` keyword of the wall fixes (kernel's `point`)
-LAWS = tuple(_walls.LAWS)                              # `law` keyword of the wall fixes: grains3d, descantes
+LAWS = ("grains3d", "descantes")                       # `law` keyword of the wall fixes (dem.law.descantes)
 
 
 def law_name(word, what):
@@ -49,8 +48,8 @@ def law_name(word, what):
 
 def wall_keyword(fix, a, i, law, modes=POINT_MODES):
     """The keywords every wall fix takes, at a[i] (dem.args.Args): `point MODE` (one of modes) sets
-    fix.point, `law NAME` fix.contact_law, a coefficient of the law is added to the list `law`. Returns the
-    index after it, or None for another keyword."""
+    fix.point, `law NAME` fix.contact_law, a word of the law (or `type T`) is added to the list `law`.
+    Returns the index after it, or None for another keyword."""
     key = a[i]
     if key == "point":
         if a[i + 1] not in modes:
@@ -58,22 +57,24 @@ def wall_keyword(fix, a, i, law, modes=POINT_MODES):
         fix.point = POINT_MODES.index(a[i + 1])
     elif key == "law":
         fix.contact_law = law_name(a[i + 1], f"fix {fix.id} {fix.style}")
-    elif key in dem_contact.KEYWORDS:
+    elif key in LAW_WORDS:
         law += a.words[i:i + 2]
     else:
         return None
     return i + 2
 
 
-WALL_KEYWORDS = ["point", "law"] + list(dem_contact.KEYWORDS)   # for did_you_mean
+LAW_WORDS = WORDS + ("type",)
+WALL_KEYWORDS = ["point", "law"] + list(LAW_WORDS)   # for did_you_mean
 
 
 class WallFix(WallCoefficients):
     """Mixin of a wall Fix: `surfaces()` returns the current table (one row per surface, the same count as
     the coefficient table's walls); `self.point` (an index of POINT_MODES) chooses the contact point(s) of
     shaped particles; `self.contact_law` (one of LAWS, default grains3d) the law at every contact point:
-    `descantes` is Descantes' eq. 3 of the shared law (dem_contact/law.pxd; no spring, no history)."""
+    `descantes` is Descantes' eq. 3 of the shared law (dem.law.descantes; no spring, no history)."""
     point = 0
+    max_history = None           # the kernel keeps any history layout (dem.law.history_layout)
 
     def init_walls(self, nwalls):
         self.init_table(nwalls)
@@ -85,9 +86,8 @@ class WallFix(WallCoefficients):
     def compute(self, advance):
         sim = self.sim
         _walls.walls(ParticleView(sim.atom), int(self.groupbit), self.surfaces(), self.table, self.shape_view,
-                     self.history(), self.use_history, sim.update.dt, advance, self.point,
-                     bool(getattr(sim.pair, "multipoint_average", True)), _walls.LAWS[self.contact_law],
-                     self.stats)
+                     self.history(), self.law_width, self.use_history, sim.update.dt, advance, self.point,
+                     bool(getattr(sim.pair, "multipoint_average", True)), self.stats)
         self.ncontacts = int(self.stats[STAT["CONTACTS"]])
         self.max_overlap = float(self.stats[STAT["MAXOV"]])
         self.energy = float(self.stats[STAT["ENERGY"]])

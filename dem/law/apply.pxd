@@ -1,30 +1,32 @@
 # cython: language_level=3
 """The one path from a contact record (dem/contact/record.pxd) to forces and torques, shared by every pair
-style and wall: the relative velocity of the two surfaces at the contact point, the law (law.pxd: Grains3D
-with its tangential history, or Descantes' eq. 3), the force on both bodies, the torques about both centres of mass,
-optional rolling resistance, all times the record's weight.
+style and wall: the relative velocity of the two surfaces at the contact point, the law of the row (law.pxd:
+its normal, damping and tangential parts, with the contact's history), the force on both bodies, the
+torques about both centres of mass, all times the record's weight, then the rolling part (rolling.pxd).
 
-A Body is one side of a contact. Pair styles call apply_pair(_law), walls apply_wall(_law), where the wall
+A Body is one side of a contact. Pair styles call apply_pair, walls apply_wall, where the wall
 is the Body b: `v` is its velocity at the contact point and `w` its spin (for rolling resistance); it takes no force
 (its x, f, t are not read). Both are one function, _apply, whose `wall` flag is a constant at each call.
 Rolling resistance acts when reff > 0 (spheres: R_eff; Grains3D applies none to shaped bodies). A row of
-the Hertz model (c[C_MODEL], law.pxd) takes reff as R* too; `contact_radius` gives every style the reff to
-pass: R_i R_j / (R_i + R_j) of two spheres, or of the spheres of equal volume for a Hertz row between
-shaped bodies (their R* is not a local curvature: sharp edges have none), else 0.
+the Hertz family (c[C_NORMAL] other than Hooke) takes reff as R* too; `contact_radius` gives every style
+the reff to pass: R_i R_j / (R_i + R_j) of two spheres, or of the spheres of equal volume for a Hertz row
+between shaped bodies (their R* is not a local curvature: sharp edges have none), else 0.
 
 A Body's `s` (9 doubles, or NULL) receives F (x) l, the force it takes times its lever from its centre of
 mass: the per-particle contact stress tally of dem/tally.py (a rolling couple adds only an antisymmetric
 part and is left out)."""
 from dem._math cimport cross3
+from dem._particles cimport Particles
 from dem.contact.record cimport Contact
-from dem_contact.law cimport (hooke, hertz, descantes, rolling_torque, LAW_DESCANTES, C_MODEL,
-                              MODEL_HERTZ)
+from dem.law.row cimport C_NORMAL, N_HOOKE
+from dem.law.law cimport ForRolling, evaluate
+from dem.law.rolling cimport rolling_torque
 
 
 cdef inline double contact_radius(const double* c, bint spheres, double ri, double rj) noexcept nogil:
     """reff of a pair (see above): ri, rj are the radii of the bodies' spheres of equal volume (a sphere's own
     radius), rj < 0 for a wall (R* = ri); `spheres` says both bodies are spheres."""
-    if not spheres and c[C_MODEL] != MODEL_HERTZ:
+    if not spheres and c[C_NORMAL] == N_HOOKE:
         return 0.0
     return ri if rj < 0.0 else ri * rj / (ri + rj)
 
@@ -38,6 +40,16 @@ cdef struct Body:
     double* s           # stress tally F (x) lever, row-major 3x3, or NULL (dem/tally.py; unused for a wall)
 
 
+cdef inline void bind_body(Body* b, const Particles* P, int i) noexcept nogil:
+    """b: particle i of P (owned or ghost), its stress tally when one is kept."""
+    b.x = &P.x[3 * i]
+    b.v = &P.v[3 * i]
+    b.w = &P.omega[3 * i]
+    b.f = &P.f[3 * i]
+    b.t = &P.torque[3 * i]
+    b.s = &P.stress[9 * i] if P.stress != NULL else NULL
+
+
 cdef inline void _point_velocity(const Body* b, const double* l, double* u) noexcept nogil:
     """u = v + w x l: the velocity of body b's material point at lever l from its centre."""
     u[0] = b.v[0] + b.w[1] * l[2] - b.w[2] * l[1]
@@ -46,33 +58,18 @@ cdef inline void _point_velocity(const Body* b, const double* l, double* u) noex
 
 
 cdef inline double apply_pair(const double* c, const Contact* k, const Body* a, const Body* b, double meff,
-                              double reff, double* xi, double dt, bint advance, double* out) noexcept nogil:
-    """The law at contact k between bodies a and b (reduced mass meff, coefficient row c): adds the force to
-    a and minus it to b, and the torques about both centres; out receives the force on a (0-2) and the
-    rolling torque on a (3-5, zero if none). Returns the elastic energy (times the weight)."""
-    return _apply(c, k, a, b, meff, reff, xi, dt, advance, out, False, 0)
-
-
-cdef inline double apply_pair_law(const double* c, const Contact* k, const Body* a, const Body* b, double meff,
-                                  double reff, double* xi, double dt, bint advance, double* out,
-                                  int law) noexcept nogil:
-    """apply_pair with the law `law` (law.pxd: LAW_GRAINS3D, i.e. apply_pair, or LAW_DESCANTES, which
-    has no history: xi is not read)."""
-    return _apply(c, k, a, b, meff, reff, xi, dt, advance, out, False, law)
+                              double reff, double* h, double dt, bint advance, double* out) noexcept nogil:
+    """The law at contact k between bodies a and b (reduced mass meff, coefficient row c, history h or
+    NULL): adds the force to a and minus it to b, and the torques about both centres; out receives the
+    force on a (0-2) and the rolling torque on a (3-5, zero if none). Returns the elastic energy (times the
+    weight)."""
+    return _apply(c, k, a, b, meff, reff, h, dt, advance, out, False)
 
 
 cdef inline double apply_wall(const double* c, const Contact* k, const Body* a, const Body* wall, double m,
-                              double reff, double* xi, double dt, bint advance, double* out) noexcept nogil:
+                              double reff, double* h, double dt, bint advance, double* out) noexcept nogil:
     """apply_pair against a wall (m_ij = m, a's mass): only a takes the force and the torque."""
-    return _apply(c, k, a, wall, m, reff, xi, dt, advance, out, True, 0)
-
-
-cdef inline double apply_wall_law(const double* c, const Contact* k, const Body* a, const Body* wall, double m,
-                                  double reff, double* xi, double dt, bint advance, double* out,
-                                  int law) noexcept nogil:
-    """apply_wall with the law `law` (law.pxd: LAW_GRAINS3D, i.e. apply_wall, or LAW_DESCANTES: no history,
-    xi is not read)."""
-    return _apply(c, k, a, wall, m, reff, xi, dt, advance, out, True, law)
+    return _apply(c, k, a, wall, m, reff, h, dt, advance, out, True)
 
 
 cdef inline void _tally(double* s, const double* f, const double* l, double sign) noexcept nogil:
@@ -83,8 +80,8 @@ cdef inline void _tally(double* s, const double* f, const double* l, double sign
 
 
 cdef inline double _apply(const double* c, const Contact* k, const Body* a, const Body* b, double meff,
-                          double reff, double* xi, double dt, bint advance, double* out,
-                          bint wall, int law) noexcept nogil:
+                          double reff, double* h, double dt, bint advance, double* out,
+                          bint wall) noexcept nogil:
     cdef double vr[3]
     cdef double ua[3]
     cdef double ub[3]
@@ -96,6 +93,7 @@ cdef inline double _apply(const double* c, const Contact* k, const Body* a, cons
     cdef double lxf[3]
     cdef double tr[3]
     cdef double energy, s = k.weight
+    cdef ForRolling R
     cdef const double* n = k.n
     cdef const double* wa = a.w
     cdef const double* wb = b.w
@@ -126,12 +124,7 @@ cdef inline double _apply(const double* c, const Contact* k, const Body* a, cons
             _point_velocity(b, lj, ub)
         for d in range(3):
             vr[d] = ua[d] - ub[d]
-    if law == LAW_DESCANTES:
-        energy = descantes(c, k.delta, n, vr, meff, fn, ft)
-    elif c[C_MODEL] == MODEL_HERTZ:      # per type pair: R* is reff (contact_radius)
-        energy = hertz(c, k.delta, n, vr, meff, reff, xi, dt, advance, fn, ft)
-    else:
-        energy = hooke(c, k.delta, n, vr, meff, xi, dt, advance, fn, ft)
+    energy = evaluate(c, k.delta, n, vr, meff, reff, h, dt, advance, fn, ft, &R)
     if s != 1.0:
         energy *= s
         for d in range(3):
@@ -170,7 +163,8 @@ cdef inline double _apply(const double* c, const Contact* k, const Body* a, cons
         if not wall and b.s != NULL:
             _tally(b.s, out, lj, -1.0)
     out[3] = out[4] = out[5] = 0.0
-    if reff > 0.0 and rolling_torque(c, wa, wb, fn, reff, tr):
+    if reff > 0.0 and rolling_torque(c, n, wa, wb, fn, R.kn, s * R.load, reff, k.inertia, h, dt,
+                                                advance, tr):
         for d in range(3):
             out[3 + d] = tr[d]
             a.t[d] += tr[d]

@@ -1,0 +1,315 @@
+"""The contact law as parts, shared by every contact geometry (pair styles and walls): the words of a
+`pair_coeff` (or wall fix) line, the coefficient row they make (row.pxd: which normal, damping,
+tangential and rolling part acts, and their coefficients), the materials of each type mixed per pair, the
+history a table of rows needs, and contact times. The force is computed by the inline nogil parts
+(normal.pxd, damping.pxd, tangential.pxd, rolling.pxd) composed by law.pxd, applied at a contact record
+by apply.pxd.
+
+A line names its parts (`normal hooke|hertz|jkr|dmt`, `damping restitution|hertz`, `tangential
+spring|mindlin|viscous`, `rolling constant|epsd|epsd2`) and gives their coefficients as keyword-value
+pairs in any order. `model hooke|hertz` is `normal` said as before the parts existed; unnamed parts take
+the defaults of the normal part: Hooke goes with restitution damping and the spring (the Grains3D law,
+Part III eq. 10-16), the Hertz family (hertz, jkr, dmt) with Hertz damping and Mindlin (LIGGGHTS's model
+hertz); rolling is `constant` (mu_roll, 0: none)."""
+import math
+
+import numpy as np
+
+from dem.args import float_error, number
+from dem.errors import DemError, did_you_mean
+
+from . import hertz
+from ._columns import COLUMNS, PARTS
+
+# columns of a coefficient row: defined once, in row.pxd
+(KN, BETA, MU, GAMMA_T, KS, MU_ROLL, EN, BETA_T, NORMAL, YSTAR, GSTAR, DAMPING, TANGENTIAL, LIMIT, ROLLING,
+ ETA_ROLL, W, H_ROLL, H_BOND, NCOEFF, XI_WIDTH, ROLL_WIDTH, BOND_WIDTH) = (COLUMNS[k] for k in (
+    "KN", "BETA", "MU", "GAMMA_T", "KS", "MU_ROLL", "EN", "BETA_T", "NORMAL", "YSTAR", "GSTAR", "DAMPING",
+    "TANGENTIAL", "LIMIT", "ROLLING", "ETA_ROLL", "W", "H_ROLL", "H_BOND", "NCOEFF", "XI_WIDTH", "ROLL_WIDTH",
+    "BOND_WIDTH"))
+HERTZ_FAMILY = ("hertz", "jkr", "dmt")
+ADHESIVE = ("jkr", "dmt")
+KEYWORDS = {"kn": "normal stiffness (N/m) of normal hooke",
+            "en": "normal restitution coefficient (0 <= en <= 1; 0: critical damping, no rebound)",
+            "mu": "Coulomb friction coefficient", "gamma_t": "tangential dissipative coefficient (1/s)",
+            "beta_t": "tangential damping as a fraction of critical, nu_t += 2 beta_t sqrt(kn m_ij) "
+                      "(1: gamma_t = gamma_n at en 0, Descantes 2022 Table 2)",
+            "ks": "tangential spring stiffness (N/m), needs contact history",
+            "mu_roll": "rolling resistance coefficient (dimensionless, times R_eff |F_n|)",
+            "E": "Young's modulus (Pa), > 0", "nu": "Poisson's ratio, -1 < nu <= 0.5",
+            "w": "work of adhesion (J/m^2), > 0: twice the surface energy of one body",
+            "eta_roll": "rolling damping of rolling epsd, a fraction of critical (0 <= eta_roll)"}
+SELECTORS = ("normal", "damping", "tangential", "rolling")
+# the numbers each part takes: the part's own coefficients and which of them a line must give
+PART_WORDS = {("normal", "hooke"): ("kn",), ("normal", "hertz"): ("E", "nu"), ("normal", "jkr"): ("E", "nu", "w"),
+              ("normal", "dmt"): ("E", "nu", "w"),
+              ("damping", "restitution"): ("en", "gamma_t", "beta_t"), ("damping", "hertz"): ("en",),
+              ("tangential", "spring"): ("mu", "ks"), ("tangential", "mindlin"): ("mu",),
+              ("tangential", "viscous"): ("mu",),
+              ("rolling", "constant"): ("mu_roll",), ("rolling", "epsd"): ("mu_roll", "eta_roll"),
+              ("rolling", "epsd2"): ("mu_roll",)}
+REQUIRED = {"hooke": ("kn", "en"), "hertz": ("E", "nu", "en", "mu"), "jkr": ("E", "nu", "w", "en", "mu"),
+            "dmt": ("E", "nu", "w", "en", "mu"), "epsd": ("mu_roll", "eta_roll"), "epsd2": ("mu_roll",)}
+WORDS = ("model",) + SELECTORS + tuple(KEYWORDS)      # every word of a law line (for the fixes' parsers)
+MATERIAL = ("E", "nu", "w")      # of each type: a line for types I != J may leave them to pair_coeff I I
+DEFAULT_PARTS = {"hooke": {"damping": "restitution", "tangential": "spring"},
+                 "hertz": {"damping": "hertz", "tangential": "mindlin"}}
+DEFAULTS = {"mu": 0.0, "gamma_t": 0.0, "beta_t": 0.0, "ks": 0.0, "mu_roll": 0.0}
+
+
+def _parts(words, what):
+    """The parts a line names (model = normal), the rest of its words as (keyword, value) pairs."""
+    parts, rest = {}, []
+    for key, value in zip(words[::2], words[1::2]):
+        sel = "normal" if key == "model" else key
+        if sel not in SELECTORS:
+            rest.append((key, value))
+            continue
+        if sel in parts:
+            raise DemError(f"{what}: '{key}' is given twice")
+        if value not in PARTS[sel]:
+            if key == "model":
+                raise DemError(f"{what}: model must be hertz or hooke, got '{value}' (or 'normal "
+                               f"{'|'.join(PARTS['normal'])}')")
+            raise DemError(f"{what}: {sel} must be one of {', '.join(PARTS[sel])}, got '{value}'"
+                           f"{did_you_mean(value, PARTS[sel])}")
+        parts[sel] = value
+    normal = parts.setdefault("normal", "hooke")
+    for sel, value in DEFAULT_PARTS["hooke" if normal == "hooke" else "hertz"].items():
+        parts.setdefault(sel, value)
+    parts.setdefault("rolling", "constant")
+    return parts, rest
+
+
+def parse(words, what, required=("kn", "en"), same_type=True):
+    """The words of a pair_coeff or wall line into a dict: its parts ("normal", "damping", "tangential",
+    "rolling") and coefficients. `required` is what a Hooke line must give (walls: nothing, so that a bare
+    line takes pair_coeff I I); `same_type` false (a line for types I != J only) lets a Hertz-family line
+    leave E, nu and w to the types' own lines (mixed at init: mix_materials)."""
+    if len(words) % 2:
+        raise DemError(f"{what}: coefficients come as 'keyword value' pairs, got {' '.join(words)}")
+    parts, rest = _parts(words, what)
+    normal = parts["normal"]
+    allowed = {k for (sel, part), ks in PART_WORDS.items() if parts[sel] == part for k in ks}
+    out = dict(parts)
+    for key, value in rest:
+        if key not in KEYWORDS:
+            raise DemError(f"{what}: unknown coefficient '{key}'{did_you_mean(key, KEYWORDS)}; "
+                           f"known: {', '.join(KEYWORDS)}")
+        if key not in allowed:
+            raise DemError(_not_of_these_parts(what, key, parts))
+        if key in out:
+            raise DemError(f"{what}: '{key}' is given twice")
+        try:
+            out[key] = number(value)
+        except ValueError:
+            raise DemError(f"{what}: {float_error(value, key)}") from None
+    if parts["tangential"] == "mindlin" and normal == "hooke":
+        raise DemError(f"{what}: tangential mindlin needs the Hertz family (normal hertz, jkr or dmt: its "
+                       f"stiffness grows with the contact radius); the Hooke law takes tangential spring")
+    if parts["tangential"] == "viscous" and parts["damping"] != "restitution":
+        raise DemError(f"{what}: tangential viscous takes its dashpot from damping restitution (gamma_t, "
+                       f"beta_t); add 'damping restitution'")
+    need = {}                  # part: the words it lacks
+    if normal == "hooke":
+        need[_name(parts)] = required
+    elif same_type or any(k in out for k in MATERIAL):      # a material is given whole
+        need[_name(parts)] = REQUIRED[normal]
+    else:                      # types I != J only: the material may come from pair_coeff I I and J J
+        need[_name(parts)] = [k for k in REQUIRED[normal] if k not in MATERIAL]
+    if parts["rolling"] in REQUIRED:
+        need[f"rolling {parts['rolling']}"] = REQUIRED[parts["rolling"]]
+    for name, keys in need.items():
+        missing = [k for k in keys if k not in out]
+        if missing:
+            raise DemError(f"{what}: {name} needs {', '.join(missing)} "
+                           f"({'; '.join(KEYWORDS[k] for k in missing)})")
+    check(out, what)
+    return out
+
+
+def _name(parts):
+    return "model hertz" if parts["normal"] == "hertz" else f"normal {parts['normal']}" if parts[
+        "normal"] != "hooke" else "the Hooke law"
+
+
+def _not_of_these_parts(what, key, parts):
+    """The error for a coefficient that none of the line's parts takes, naming the part that does."""
+    owners = [f"{sel} {part}" for (sel, part), ks in PART_WORDS.items() if key in ks]
+    if key in ("E", "nu") and parts["normal"] == "hooke":
+        return (f"{what}: '{key}' is a material parameter of 'model hertz' (add it, or give kn and en for the "
+                f"Hooke law)")
+    if parts["normal"] in HERTZ_FAMILY and key in ("kn", "ks", "gamma_t", "beta_t"):
+        return (f"{what}: {_name(parts)} derives the stiffnesses and the damping from E, nu and en; '{key}' is "
+                f"a coefficient of the Hooke law (remove it, or name the part that takes it: "
+                f"{', '.join(owners)})")
+    return f"{what}: '{key}' is a coefficient of {' or '.join(owners)}, not of this line's parts"
+
+
+def check(c, what):
+    if "kn" in c and not c["kn"] > 0:
+        raise DemError(f"{what}: kn must be > 0")
+    if "en" in c and not 0 <= c["en"] <= 1:
+        raise DemError(f"{what}: en must be in [0, 1] (0: critical damping)")
+    if "E" in c and not c["E"] > 0:
+        raise DemError(f"{what}: E (Young's modulus) must be > 0, got {c['E']:g}")
+    if "nu" in c and not -1.0 < c["nu"] <= 0.5:
+        raise DemError(f"{what}: nu (Poisson's ratio) must be in (-1, 0.5], got {c['nu']:g}")
+    if "w" in c and not c["w"] > 0:
+        raise DemError(f"{what}: w (work of adhesion) must be > 0, got {c['w']:g}")
+    for k in ("mu", "gamma_t", "beta_t", "ks", "mu_roll", "eta_roll"):
+        if c.get(k, 0.0) < 0:
+            raise DemError(f"{what}: {k} must be >= 0")
+    if c.get("rolling", "constant") != "constant" and not c.get("mu_roll", 0.0) > 0:
+        raise DemError(f"{what}: rolling {c['rolling']} needs mu_roll > 0")
+
+
+def frictionless(c):
+    """True when mu is given but none of ks, gamma_t, beta_t, with the spring of Grains3D: the tangential
+    force is then zero whatever mu is (the law caps a trial force of -nu_t U_rt - ks xi). LAMMPS's granular
+    styles take Kt = 2/7 Kn for a NULL Kt; dem keeps its coefficients explicit and warns instead."""
+    if c.get("tangential", "spring") != "spring" or c.get("damping", "restitution") != "restitution":
+        return False
+    return c.get("mu", 0.0) > 0 and not any(c.get(k, 0.0) > 0 for k in ("ks", "gamma_t", "beta_t"))
+
+
+def warn_frictionless(sim, owner, what):
+    """Warn once per style instance (at the line that set such coefficients) that mu has no effect."""
+    if getattr(owner, "_warned_frictionless", False):
+        return
+    owner._warned_frictionless = True
+    where = sim.input.location
+    sim.warning(f"{where + ': ' if where else ''}{what}: mu is given but ks, gamma_t and beta_t are 0, so the "
+                f"tangential force is zero (give ks, gamma_t or beta_t for friction)")
+
+
+def beta(en):
+    """gamma_n = beta * omega0 with omega0 = sqrt(kn / m_ij) (eq. 16 with the reduced mass); en = 0 is its
+    limit, critical damping (beta = 1: Descantes 2022 Table 1, gamma_n = 2 sqrt(m_ij kn))."""
+    if en == 0:
+        return 1.0
+    ln = math.log(en)
+    return -ln / math.sqrt(math.pi ** 2 + ln * ln)
+
+
+def has_material(c):
+    """Whether a parsed line gives its own material (a Hertz-family line may leave it to its types)."""
+    return c["normal"] == "hooke" or "E" in c
+
+
+def mix_materials(c, mat_i, mat_j):
+    """The line c with the material of types i and j (their parsed `pair_coeff I I` lines) where it gives
+    none: Y* = 1 / ((1 - nu_i^2) / E_i + (1 - nu_j^2) / E_j), G* = 1 / ((2 - nu_i) / G_i + (2 - nu_j) / G_j)
+    (hertz.py) and w = sqrt(w_i w_j) (the geometric mean of the surface energies, Berthelot's rule)."""
+    out = dict(c)
+    out["_mix"] = (mat_i, mat_j)
+    if c["normal"] in ADHESIVE:
+        out["w"] = math.sqrt(mat_i["w"] * mat_j["w"])
+    return out
+
+
+def row(c):
+    """The coefficient row of a parsed line (materials resolved: has_material, or mix_materials)."""
+    r = np.zeros(NCOEFF)
+    for sel in SELECTORS:
+        r[COLUMNS[sel.upper()]] = PARTS[sel][c.get(sel, DEFAULT_PARTS["hooke"].get(sel, "constant"))]
+    r[BETA], r[EN] = beta(c["en"]), c["en"]
+    r[MU], r[GAMMA_T] = c.get("mu", 0.0), c.get("gamma_t", 0.0)
+    r[KS], r[MU_ROLL] = c.get("ks", 0.0), c.get("mu_roll", 0.0)
+    r[BETA_T] = c.get("beta_t", 0.0)
+    r[ETA_ROLL] = c.get("eta_roll", 0.0)
+    r[W] = c.get("w", 0.0)
+    r[H_ROLL] = r[H_BOND] = -1.0
+    if c.get("normal", "hooke") == "hooke":
+        r[KN] = c["kn"]
+    elif "_mix" in c:
+        (mi, mj) = c["_mix"]
+        r[YSTAR], r[GSTAR] = hertz.mixed_moduli(mi["E"], mi["nu"], mj["E"], mj["nu"])
+    else:
+        r[YSTAR], r[GSTAR] = hertz.moduli(c["E"], c["nu"])
+    return r
+
+
+def descantes(rows):
+    """Rows of Descantes' eq. 3 (the `law descantes` of pair polyhedron/multipoint and the walls): the
+    damping never attracts and friction is viscous, capped by Coulomb (no spring, no history)."""
+    rows = np.array(rows)
+    rows[..., LIMIT] = 1.0
+    rows[..., TANGENTIAL] = PARTS["tangential"]["viscous"]
+    return rows
+
+
+def is_hertz_row(r):
+    """Whether a coefficient row is of the Hertz family (elementwise over an array of rows)."""
+    return np.asarray(r)[..., NORMAL] != PARTS["normal"]["hooke"]
+
+
+def _needs(rows):
+    """(tangential history, rolling spring, bond) needed by rows (any array of them)."""
+    rows = np.asarray(rows)
+    tan = rows[..., TANGENTIAL]
+    xi = np.any((tan == PARTS["tangential"]["spring"]) & (rows[..., KS] > 0)) or np.any(
+        (tan == PARTS["tangential"]["mindlin"]) & (rows[..., MU] > 0))
+    roll = np.any((rows[..., ROLLING] != PARTS["rolling"]["constant"]) & (rows[..., MU_ROLL] > 0))
+    bond = np.any(rows[..., NORMAL] == PARTS["normal"]["jkr"])
+    return bool(xi), bool(roll), bool(bond)
+
+
+def history_layout(rows):
+    """The history width a table of rows needs (0: none) and, in place, each row's offsets: the tangential
+    spring xi first (XI_WIDTH), then the rolling spring (ROLL_WIDTH) and the bond flag, each only when a
+    row of the table has that part. A table of today's models keeps XI_WIDTH or nothing."""
+    xi, roll, bond = _needs(rows)
+    if not (xi or roll or bond):
+        return 0
+    width = XI_WIDTH
+    rows[..., H_ROLL] = rows[..., H_BOND] = -1.0
+    if roll:
+        rows[..., H_ROLL] = np.where(rows[..., ROLLING] != PARTS["rolling"]["constant"], width, -1.0)
+        width += ROLL_WIDTH
+    if bond:
+        rows[..., H_BOND] = np.where(rows[..., NORMAL] == PARTS["normal"]["jkr"], width, -1.0)
+        width += BOND_WIDTH
+    return width
+
+
+def needs_history(rows):
+    """Whether coefficient rows need contact history (history_layout's width > 0)."""
+    return any(_needs(rows))
+
+
+def max_reach(rows, reff):
+    """The largest distance beyond contact at which a row still acts, for contacts of R* up to reff (the
+    neighbor list adds it to the pair cutoff): JKR's pull-off distance 3/4 (pi^2 w^2 R* / Y*^2)^(1/3)."""
+    rows = np.asarray(rows).reshape(-1, NCOEFF)
+    jkr = rows[rows[:, NORMAL] == PARTS["normal"]["jkr"]]
+    if not len(jkr):
+        return 0.0
+    return float(np.max(0.75 * np.cbrt(math.pi ** 2 * jkr[:, W] ** 2 * reff / jkr[:, YSTAR] ** 2)))
+
+
+def contact_time(kn, en, meff):
+    """T_c = pi / sqrt(omega0^2 - gamma_n^2) (eq. 12). At critical damping (en = 0) the pair never parts:
+    the undamped half period pi / omega0 is returned as the contact's time scale (the time step check)."""
+    w0 = math.sqrt(kn / meff)
+    g = beta(en) * w0
+    if g >= w0:
+        return math.pi / w0
+    return math.pi / math.sqrt(w0 * w0 - g * g)
+
+
+def row_contact_time(r, meff, reff, speed):
+    """Contact time of a coefficient row for a pair of reduced mass meff and radius reff: the Hooke one
+    (contact_time) or, for a Hertz-family row, the elastic Hertz impact at `speed` (hertz.contact_time)."""
+    if is_hertz_row(r):
+        return hertz.contact_time(r[YSTAR], meff, reff, speed)
+    return contact_time(r[KN], r[EN], meff)
+
+
+def check_speed(sim):
+    """The impact speed the time-step check assumes for Hertz rows: twice the largest particle speed at
+    setup (a head-on meeting), at least hertz.CHECK_SPEED (1 m/s; particles often start at rest)."""
+    atom = sim.atom
+    v = atom.data["v"][:atom.nlocal]
+    vmax = sim.comm.max(float(np.sqrt((v * v).sum(axis=1)).max()) if len(v) else 0.0)
+    return max(2.0 * vmax, hertz.CHECK_SPEED)

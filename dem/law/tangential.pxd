@@ -1,0 +1,76 @@
+# cython: language_level=3
+"""Tangential parts: the friction force ft at a contact with tangential velocity vt (normal n), capped by
+mu |load| (load: the normal force plus the normal part's shift).
+
+T_SPRING, T_MINDLIN: -min(mu |load|, |-nu_t vt - kt xi|) along the trial force, xi the integral of vt over
+    the contact (history, kept in the current tangent plane; with `advance` false it is read, never
+    changed); while sliding the spring holds exactly the Coulomb force minus the viscous part. kt = ks
+    (Grains3D) or 8 G* a (Mindlin, a the contact radius). Without history (xi NULL) or spring (kt = 0):
+    the dashpot alone, capped.
+T_VISCOUS (Descantes 2022 eq. 3): -min(nu_t |vt|, mu |load|) vt / |vt|, no history."""
+from libc.math cimport sqrt
+from dem.law.row cimport C_MU, C_KS, C_GSTAR, C_TANGENTIAL, T_SPRING, T_VISCOUS
+from dem.law.damping cimport tangential_damping
+
+
+cdef inline void _zero(double* ft) noexcept nogil:
+    ft[0] = 0.0
+    ft[1] = 0.0
+    ft[2] = 0.0
+
+
+cdef inline void spring(const double* c, double kt, double dampt, double load, const double* n,
+                        const double* vt, double* xi, double dt, bint advance, double* ft) noexcept nogil:
+    cdef double ft2, cap, scale, xin
+    cdef int d
+    if kt > 0.0 and xi != NULL:
+        if advance:
+            # keep the spring in the current tangent plane (the contact rotates with the bodies)
+            xin = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2]
+            for d in range(3):
+                xi[d] -= xin * n[d]
+            for d in range(3):
+                xi[d] += vt[d] * dt
+        for d in range(3):
+            ft[d] = -kt * xi[d] - dampt * vt[d]
+    else:
+        for d in range(3):
+            ft[d] = -dampt * vt[d]
+    ft2 = ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]
+    cap = c[C_MU] * (load if load > 0.0 else -load)
+    if ft2 > cap * cap:
+        scale = cap / sqrt(ft2)
+        for d in range(3):
+            ft[d] *= scale
+        if kt > 0.0 and xi != NULL and advance:
+            # sliding: the spring holds exactly the Coulomb force (minus the viscous part)
+            for d in range(3):
+                xi[d] = -(ft[d] + dampt * vt[d]) / kt
+
+
+cdef inline void viscous(double nu_t, double cap, const double* vt, double* ft) noexcept nogil:
+    cdef double ut = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2])
+    cdef double scale = nu_t
+    cdef int d
+    if ut == 0.0:
+        return
+    if scale * ut > cap:
+        scale = cap / ut
+    for d in range(3):
+        ft[d] = -scale * vt[d]
+
+
+cdef inline void tangential_force(const double* c, double w, double a, double load, double meff,
+                                  const double* n, const double* vt, double* xi, double dt, bint advance,
+                                  double* ft) noexcept nogil:
+    """ft of the row's tangential part; w = sqrt(kn m*) (damping.pxd), a the contact radius."""
+    cdef int part = <int>c[C_TANGENTIAL]
+    cdef double kt
+    _zero(ft)
+    if c[C_MU] == 0.0:
+        return
+    if part == T_VISCOUS:
+        viscous(tangential_damping(c, w, 0.0, meff), c[C_MU] * (load if load > 0.0 else -load), vt, ft)
+        return
+    kt = c[C_KS] if part == T_SPRING else 8.0 * c[C_GSTAR] * a
+    spring(c, kt, tangential_damping(c, w, kt, meff), load, n, vt, xi, dt, advance, ft)

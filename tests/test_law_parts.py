@@ -1,0 +1,213 @@
+"""The law in parts (dem/law): materials per type mixed per pair, a wall of its own type, the history a
+table lays out, and every bad line a clear error naming it.
+
+Mixed materials against the Hertz closed form (written here from the textbook, as tests/test_hertz.py):
+1 / Y* = (1 - nu_1^2) / E_1 + (1 - nu_2^2) / E_2, delta_max = (15 m* v^2 / (16 Y* sqrt(R*)))^(2/5),
+t_c = 2.8682 (m*^2 / (R* Y*^2 v))^(1/5); elastic impacts resolved with 1000 steps: overlap to ~1e-6
+(tolerance 1e-4), contact time counted in whole steps (tolerance 2 steps)."""
+import math
+
+import numpy as np
+import pytest
+
+import dem
+import dem.law
+
+R, RHO, V, STEPS = 0.005, 2500.0, 1.0, 1000
+M = RHO * 4.0 / 3.0 * math.pi * R ** 3
+MATERIALS = {1: (1e7, 0.3), 2: (5e7, 0.2), 3: (2e8, 0.45)}     # type: (E, nu)
+
+
+def ystar(*types):
+    return 1.0 / sum((1 - MATERIALS[t][1] ** 2) / MATERIALS[t][0] for t in types)
+
+
+def closed_form(ys, meff, reff, v):
+    dmax = (15.0 * meff * v * v / (16.0 * ys * math.sqrt(reff))) ** 0.4
+    return dmax, 2.0 * math.gamma(1.4) * math.sqrt(math.pi) / math.gamma(0.9) * dmax / v
+
+
+MATERIAL_LINES = "\n".join(f"pair_coeff {t} {t} model hertz E {e} nu {nu} en 1 mu 0"
+                           for t, (e, nu) in MATERIALS.items()) + """
+pair_coeff 1 2 model hertz en 1 mu 0
+pair_coeff 1 3 normal hertz en 1 mu 0
+pair_coeff 2 3 model hertz en 1 mu 0
+"""
+
+
+def impact(case):
+    """Type 1 hitting type 2 (pair) or a wall of type 3: (contact time, largest overlap, closed forms)."""
+    ys = ystar(1, 2) if case == "pair" else ystar(1, 3)
+    meff, reff = (0.5 * M, 0.5 * R) if case == "pair" else (M, R)
+    dmax, tc = closed_form(ys, meff, reff, V)
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+boundary f f f
+region box block -0.05 0.05 -0.05 0.05 0 0.05
+create_box 3 box
+pair_style sphere
+{MATERIAL_LINES}
+""")
+    if case == "pair":
+        sim.commands(f"""
+create_atoms 1 single {-R - 1e-6!r} 0 0.02 radius {R} density {RHO}
+create_atoms 2 single {R + 1e-6!r} 0 0.02 radius {R} density {RHO}
+""")
+        sim.atom.local("v")[:] = [[0.5 * V, 0, 0] if t == 1 else [-0.5 * V, 0, 0] for t in sim.atom.local("type")]
+    else:
+        sim.commands(f"""
+create_atoms 1 single 0 0 {R + 1e-6!r} radius {R} density {RHO}
+fix wall all wall/plane zplane 0 NULL type 3
+""")
+        sim.atom.local("v")[:] = [[0, 0, -V]]
+    sim.commands(f"fix 1 all nve/sphere\ntimestep {tc / STEPS!r}\nthermo 0")
+    sim.run(0)
+    counter = sim.modify.find("wall") if case == "wall" else sim.pair
+    steps_in, dmin = 0, np.inf
+    for _ in range(int(1.6 * STEPS)):
+        sim.run(1)
+        x = sim.atom.local("x")
+        gap = abs(x[1, 0] - x[0, 0]) - 2 * R if case == "pair" else x[0, 2] - R
+        dmin = min(dmin, gap)
+        steps_in += bool(counter.ncontacts)
+    return steps_in * tc / STEPS, -dmin, tc, dmax
+
+
+@pytest.mark.parametrize("case", ["pair", "wall"])
+def test_impact_of_two_materials_has_the_mixed_hertz_contact(case):
+    t, d, tc, dmax = impact(case)
+    assert abs(t - tc) <= 2 * tc / STEPS, (t, tc)
+    assert abs(d / dmax - 1) < 1e-4, (d, dmax)
+    # one material for both would be caught: type 1's alone moves the overlap by > 10 %
+    ys1 = ystar(1, 1)
+    assert abs(closed_form(ys1, 0.5 * M, 0.5 * R, V)[0] / dmax - 1) > 0.1
+
+
+def test_mixed_rows_and_history_layout():
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+boundary f f f
+region box block 0 1 0 1 0 1
+create_box 3 box
+pair_style sphere
+{MATERIAL_LINES}
+pair_coeff 3 3 normal jkr E 2e8 nu 0.45 w 0.1 en 0.5 mu 0.4 rolling epsd mu_roll 0.1 eta_roll 0.3
+pair_coeff 1 1 normal jkr E 1e7 nu 0.3 w 0.4 en 0.5 mu 0.4
+pair_coeff 1 3 normal jkr en 0.5 mu 0.4
+create_atoms 1 single 0.5 0.5 0.5 radius 0.01 density 2500
+""")
+    sim.pair.init()
+    table, law = sim.pair.table, dem.law
+    e1, nu1 = MATERIALS[1]
+    e2, nu2 = MATERIALS[2]
+    g1, g2 = e1 / (2 * (1 + nu1)), e2 / (2 * (1 + nu2))
+    assert math.isclose(table[1, 2, law.YSTAR], ystar(1, 2), rel_tol=1e-14)
+    assert math.isclose(table[2, 1, law.GSTAR], 1 / ((2 - nu1) / g1 + (2 - nu2) / g2), rel_tol=1e-14)
+    assert math.isclose(table[1, 3, law.W], math.sqrt(0.4 * 0.1), rel_tol=1e-14)   # Berthelot
+    assert table[1, 3, law.NORMAL] == law.PARTS["normal"]["jkr"]
+    # history: xi (3), the rolling spring (3) of the epsd row, the bond of the jkr rows
+    assert sim.pair.history_width == 7
+    assert table[3, 3, law.H_ROLL] == 3 and table[1, 1, law.H_ROLL] == -1
+    assert table[1, 3, law.H_BOND] == 6 and table[2, 2, law.H_BOND] == -1
+    # the largest pull-off distance is added to the neighbor cutoff (R* up to the largest radius)
+    ys = table[1, 3, law.YSTAR]
+    assert math.isclose(sim.pair.reach, 0.75 * (math.pi ** 2 * 0.4 ** 2 * 0.01 / table[1, 1, law.YSTAR] ** 2) ** (
+        1 / 3), rel_tol=1e-12) and ys > table[1, 1, law.YSTAR]
+    sim.neighbor.init()
+    assert sim.neighbor.cutmax() == 2 * 0.01 + sim.pair.reach + sim.neighbor.skin
+
+
+BOX = """boundary f f f
+region box block 0 1 0 1 0 1
+create_box 2 box
+pair_style sphere
+"""
+ATOM = "create_atoms 1 single 0.5 0.5 0.5 radius 0.01 density 2500\ntimestep 1e-6\n"
+JKR = "normal jkr E 1e7 nu 0.3 w 0.05 en 0.5 mu 0.3"
+BAD = [
+    # parse time
+    ("pair_coeff * * normal jkr E 1e7 nu 0.3 en 0.5 mu 0.3\n", "normal jkr needs w"),
+    ("pair_coeff * * normal jkr E 1e7 nu 0.3 w 0 en 0.5 mu 0.3\n", "w (work of adhesion) must be > 0"),
+    ("pair_coeff * * normal jkr E 1e7 nu 0.3 w nan en 0.5 mu 0.3\n", "w must be a finite number, got 'nan'"),
+    ("pair_coeff * * normal jkr E 1e7 nu 0.3 w -inf en 0.5 mu 0.3\n", "w must be a finite number"),
+    ("pair_coeff * * normal jkrr E 1e7 nu 0.3 w 1 en 0.5 mu 0.3\n", "normal must be one of hooke, hertz, jkr, dmt"),
+    ("pair_coeff * * model hertz normal jkr E 1e7 nu 0.3 w 1 en 0.5 mu 0.3\n", "'normal' is given twice"),
+    ("pair_coeff * * kn 1e5 en 0.5 w 0.1\n", "'w' is a coefficient of normal jkr or normal dmt"),
+    (f"pair_coeff * * {JKR} rolling epsd mu_roll 0.1\n", "needs eta_roll"),
+    (f"pair_coeff * * {JKR} rolling epsd mu_roll 0 eta_roll 0.3\n", "rolling epsd needs mu_roll > 0"),
+    (f"pair_coeff * * {JKR} eta_roll 0.3\n", "'eta_roll' is a coefficient of rolling epsd"),
+    (f"pair_coeff * * {JKR} rolling spring\n", "rolling must be one of constant, epsd, epsd2"),
+    ("pair_coeff * * kn 1e5 en 0.5 tangential mindlin mu 0.3\n", "tangential mindlin needs the Hertz family"),
+    ("pair_coeff * * model hertz E 1e7 nu 0.3 en 0.5 mu 0.3 tangential viscous\n",
+     "tangential viscous takes its dashpot from damping restitution"),
+    ("pair_coeff * * model hertz en 0.5 mu 0.3\n", "model hertz needs E, nu"),
+    ("pair_coeff 1 2 model hertz E 1e7 en 0.5 mu 0.3\n", "model hertz needs nu"),
+    (f"pair_coeff * * {JKR}\nfix w all wall/plane zplane 0 NULL type 3\n", "wall type"),
+    (f"pair_coeff * * {JKR}\nfix w all wall/plane zplane 0 NULL type 1 kn 5 en 0.5\n", "takes no coefficients"),
+    (f"pair_coeff * * {JKR}\nfix w all wall/plane zplane 0 NULL type\n", "type"),
+    (f"pair_coeff * * {JKR}\nfix w all wall/drum z 0.5 0.5 0.4 normal dmt E 1e7 nu 0.3 w -1 en 0.5 mu 0\n",
+     "w (work of adhesion) must be > 0"),
+]
+BAD_AT_RUN = [
+    # the line that leaves its material to types that have none
+    ("pair_coeff 1 1 kn 1e5 en 0.5\npair_coeff 2 2 model hertz E 1e7 nu 0.3 en 0.5 mu 0.3\n"
+     "pair_coeff 1 2 model hertz en 0.5 mu 0.3\n", 3, "type 1 has none of its own"),
+    ("pair_coeff * * model hertz E 1e7 nu 0.3 en 0.5 mu 0.3\npair_coeff 1 2 normal jkr en 0.5 mu 0.3\n", 2,
+     "this line gives no material (E, nu, w)"),
+]
+
+
+@pytest.mark.parametrize("line, message", BAD, ids=[f"{i}-{m[:28]}" for i, (_, m) in enumerate(BAD)])
+def test_bad_law_line_is_a_clear_error_naming_the_line(line, message):
+    sim = dem.Simulation(screen=False)
+    script = BOX + line
+    with pytest.raises(dem.DemError) as err:
+        sim.commands(script)
+    assert err.value.where == f"<string>:{len(script.splitlines())}", str(err.value)
+    assert message in str(err.value), str(err.value)
+
+
+@pytest.mark.parametrize("lines, bad, message", BAD_AT_RUN, ids=[m[:28] for _, _, m in BAD_AT_RUN])
+def test_material_missing_at_the_run_names_the_pair_coeff_line(lines, bad, message):
+    sim = dem.Simulation(screen=False)
+    sim.commands(BOX + lines + ATOM)
+    with pytest.raises(dem.DemError) as err:
+        sim.commands("run 1")
+    assert f"<string>:{len(BOX.splitlines()) + bad}" in str(err.value), str(err.value)
+    assert message in str(err.value), str(err.value)
+
+
+@pytest.mark.parametrize("style, shape", [("convex/gjk", "cube 0.01"), ("glued/convex", "cross3d 0.01"),
+                                          ("polyhedron/multipoint", "cube 0.01")])
+def test_parts_a_pair_style_cannot_keep_are_refused_at_the_run(style, shape):
+    sim = dem.Simulation(screen=False)
+    sim.commands(BOX.replace("pair_style sphere", f"shape s {shape}\npair_style {style}") +
+                 f"pair_coeff * * {JKR}\ncreate_atoms 1 single 0.5 0.5 0.5 shape s density 2500\n"
+                 "timestep 1e-6\n")
+    with pytest.raises(dem.DemError, match="pair_style sphere has them"):
+        sim.commands("run 1")
+
+
+def test_jkr_on_a_mesh_wall_is_refused_at_the_run(tmp_path):
+    stl = tmp_path / "floor.stl"
+    stl.write_text("solid f\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                   "endloop\nendfacet\nendsolid f\n")
+    sim = dem.Simulation(screen=False)
+    sim.commands(BOX + f"pair_coeff * * kn 1e5 en 0.5\nfix m all wall/mesh file {stl} {JKR}\n" + ATOM)
+    with pytest.raises(dem.DemError, match="fix wall/plane and wall/drum have them"):
+        sim.commands("run 1")
+
+
+def test_every_old_line_makes_the_row_it_always_made():
+    """Today's lines keep their parts' codes 0 (Hooke, restitution, spring, constant) and their numbers."""
+    law = dem.law
+    r = law.row(law.parse("kn 1e5 en 0.5 mu 0.3 ks 2e4 gamma_t 10 beta_t 0.5 mu_roll 0.1".split(), "pc"))
+    assert r[law.NORMAL] == r[law.DAMPING] == r[law.TANGENTIAL] == r[law.ROLLING] == r[law.LIMIT] == 0
+    assert (r[law.KN], r[law.KS], r[law.GAMMA_T], r[law.BETA_T], r[law.MU], r[law.MU_ROLL]) == (
+        1e5, 2e4, 10, 0.5, 0.3, 0.1)
+    h = law.row(law.parse("model hertz E 1e7 nu 0.3 en 0.5 mu 0.3".split(), "pc"))
+    assert (h[law.NORMAL], h[law.DAMPING], h[law.TANGENTIAL]) == (
+        law.PARTS["normal"]["hertz"], law.PARTS["damping"]["hertz"], law.PARTS["tangential"]["mindlin"])
+    d = law.descantes(r)
+    assert d[law.LIMIT] == 1 and d[law.TANGENTIAL] == law.PARTS["tangential"]["viscous"]
+    assert law.history_layout(np.array([d])) == 0 and law.history_layout(np.array([r])) == law.XI_WIDTH
