@@ -1,4 +1,4 @@
-"""Shapes in the simulation (`shape` command, create_atoms/set ... shape, dem.shape_command), pair style
+"""Shapes in the simulation (`shape` command, create_atoms/set ... shape, dem.shapes.command), pair style
 convex/gjk (spheres and convex bodies mixed), plane walls for shaped particles, true-shape dumps,
 restarts and MPI with shapes."""
 import math
@@ -12,9 +12,10 @@ import numpy as np
 import pytest
 
 import dem
-from dem import geometry, shape_command
+from dem import geometry
 from dem_convex._pair_convex import FEAT_SLOT, TAG_SLOT
 from dem.errors import DemError
+from dem.shapes import command as shape_command
 from dem.shapes import cube, Cylinder
 from dem.thermo import quat_to_matrix
 

@@ -1,6 +1,6 @@
 """pair_style convex/gjk: convex particles of the shape table, mixed with spheres."""
 
-from dem import shape_command
+from dem.shapes import command as shape_command
 from dem._particles import ParticleView
 from dem.errors import DemError
 from dem.history import History

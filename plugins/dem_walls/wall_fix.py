@@ -4,7 +4,7 @@ import numpy as np
 
 import dem_contact
 
-from dem import shape_command
+from dem.shapes import command as shape_command
 from dem._particles import ParticleView
 from dem.errors import DemError
 from dem_contact.wall_coeffs import WallCoefficients
