@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import dem
-from dem import geometry
+from dem.contact import geometry
 from dem_convex._pair_convex import FEAT_SLOT, TAG_SLOT
 from dem.errors import DemError
 from dem.shapes import command as shape_command
@@ -213,7 +213,7 @@ thermo 0
 
 
 def test_contact_matches_geometry_and_newton_third_law():
-    """Forces of one cube-cube contact: overlap/normal/point from dem.geometry, equal and opposite
+    """Forces of one cube-cube contact: overlap/normal/point from dem.contact.geometry, equal and opposite
     forces, torques = lever x force about each centre of mass."""
     sim = two_bodies("cube 0.002", "0.00185 0.0004 0.0003")
     sim.run(0)

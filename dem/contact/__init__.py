@@ -7,5 +7,5 @@
 
 A new contact algorithm (GJK-TD, face clipping, component pairs of glued bodies) goes here as nogil
 functions that fill `Contact` records; the law and the force bookkeeping stay in plugins/dem_contact.
-`dem.geometry` is the public Python entry point to these kernels (tests, tools, set-up).
+`geometry.py` (`dem.contact.geometry`) is the public Python entry point to these kernels (tests, tools, set-up).
 """
