@@ -16,7 +16,7 @@ import time
 import numpy as np
 
 from dem.contact import _gjk
-from dem import geometry as G
+from dem.contact import geometry as G
 from dem.shapes import Cylinder, Polyhedron, ShapeTable, cube
 from dem.shapes.polyhedron import hull_mesh
 

@@ -14,7 +14,7 @@ import time
 
 import numpy as np
 
-from dem import geometry as G
+from dem.contact import geometry as G
 from dem.contact import _gjk, _polytope
 from dem.contact.polytope import topology_view
 from dem.shapes import Polyhedron, ShapeTable, cube, pinacoid

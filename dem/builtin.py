@@ -13,7 +13,7 @@ from .integrate import INTEGRATORS
 from .read_data import ReadData
 from .region import REGIONS
 from .restart import RESTART_COMMANDS
-from .shape_command import SHAPE_STYLES
+from .shapes.command import SHAPE_STYLES
 from .write_data import WriteData
 
 

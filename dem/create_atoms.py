@@ -3,7 +3,7 @@ import math
 
 import numpy as np
 
-from . import shape_command
+from .shapes import command as shape_command
 from .command import Command
 from .commands import find_region
 from .errors import DemError

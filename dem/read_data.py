@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from . import shape_command
+from .shapes import command as shape_command
 from .args import integer, number
 from .command import Command
 from .commands.box import MAX_TYPES
@@ -261,8 +261,7 @@ class DataFile:
         if not any(n is not None for n in names):
             return index
         if len(sim.shapes) == 0 and self.shape_commands:
-            from .shape_command import ShapeCommand
-            cmd = ShapeCommand(sim)
+            cmd = shape_command.ShapeCommand(sim)
             for lineno, words in self.shape_commands:
                 try:
                     cmd(words)

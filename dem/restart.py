@@ -12,6 +12,7 @@ from . import restart_file
 from .command import Command
 from .errors import DemError
 from .interrupt import SIGNAL_STATE
+from .shapes import command as shape_command
 
 # 1: pickle, single-record history stores ({name}_n, _tag, _val); 2: pickle, keyed stores too
 # ({name}_key); 3: HDF5 (restart_file). Pickles are refused: loading one can run any code.
@@ -106,8 +107,7 @@ def read_restart(sim, path):
     else:
         nb.invalidate()
     if state.get("shapes"):           # the shape table, unless the script defined it already
-        from .shape_command import rebuild
-        rebuild(sim, state["shapes"])
+        shape_command.rebuild(sim, state["shapes"])
     sim.modify.restart_states = dict(state["fixes"])
     sim.restart_pair_state = state["pair"]
     sim.print(f"Read restart {path}: {atom.natoms} particles at step {up.ntimestep}")

@@ -17,7 +17,7 @@ from .modify import Modify
 from .neighbor import Neighbor
 from .output import Output
 from .registry import default_registry
-from .shape_command import SimShapes
+from .shapes.command import SimShapes
 from .tally import Tally
 from .update import Update
 

@@ -7,7 +7,7 @@ run without such a compute pays one pointer test per contact and nothing else.
 
 * `stress` (9 values, row-major): sum over the particle's contact points of F (x) (P - G), F the force
   the particle receives at point P, G its centre of mass (Moreau's per-particle moment tensor, Descantes
-  eq. 12), written by the shared law (dem_contact/apply.pxd) for every pair style and wall;
+  eq. 12), written by the shared law (dem/law/apply.pxd) for every pair style and wall;
 * `types` (5 values): the particle's pair contacts by type: vertex/face, edge/edge, edge/face,
   face/face, with a sphere (only `pair_style polyhedron/multipoint` knows the types);
 * `count` (2 values): the particle's pair contacts (touching neighbours; a pair of composites or

@@ -5,7 +5,7 @@ import os
 
 import numpy as np
 
-from . import shape_command
+from .shapes import command as shape_command
 from .command import Command
 from .errors import DemError
 from .interrupt import SIGNAL_STATE

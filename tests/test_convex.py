@@ -1,9 +1,8 @@
-"""Shapes in the simulation (`shape` command, create_atoms/set ... shape, dem.shape_command), pair style
+"""Shapes in the simulation (`shape` command, create_atoms/set ... shape, dem.shapes.command), pair style
 convex/gjk (spheres and convex bodies mixed), plane walls for shaped particles, true-shape dumps,
 restarts and MPI with shapes."""
 import math
 import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -12,11 +11,14 @@ import numpy as np
 import pytest
 
 import dem
-from dem import geometry, shape_command
+from dem.contact import geometry
 from dem_convex._pair_convex import FEAT_SLOT, TAG_SLOT
 from dem.errors import DemError
+from dem.shapes import command as shape_command
 from dem.shapes import cube, Cylinder
 from dem.thermo import quat_to_matrix
+
+from conftest import MPIEXEC
 
 BOX = """
 boundary f f f
@@ -212,7 +214,7 @@ thermo 0
 
 
 def test_contact_matches_geometry_and_newton_third_law():
-    """Forces of one cube-cube contact: overlap/normal/point from dem.geometry, equal and opposite
+    """Forces of one cube-cube contact: overlap/normal/point from dem.contact.geometry, equal and opposite
     forces, torques = lever x force about each centre of mass."""
     sim = two_bodies("cube 0.002", "0.00185 0.0004 0.0003")
     sim.run(0)
@@ -557,14 +559,6 @@ def test_pair_move_bound_covers_every_point():
     assert np.allclose(move - shift, turn, rtol=1e-6, atol=1e-13 * radius.max())
 
 
-def _mpiexec():
-    for folder in (os.path.dirname(sys.executable), None):
-        found = shutil.which("mpiexec", path=folder) if folder else shutil.which("mpiexec")
-        if found:
-            return found
-    return None
-
-
 MPI_DRIVER = """
 import sys
 sys.path[:0] = {paths!r}
@@ -597,7 +591,7 @@ if sim.comm.me == 0:
 """
 
 
-@pytest.mark.skipif(_mpiexec() is None, reason="mpiexec not found")
+@pytest.mark.skipif(MPIEXEC is None, reason="mpiexec not found")
 def test_mpi_two_ranks_match_one(tmp_path):
     """Shapes on two ranks: ghosts carry shape, radius (scale) and orientation; the table is the same."""
     import dem_sphere
@@ -607,7 +601,7 @@ def test_mpi_two_ranks_match_one(tmp_path):
     for n in (1, 2):
         cmd = [sys.executable, "drive.py", f"out{n}.npz"]
         if n > 1:
-            cmd = [_mpiexec(), "-n", str(n)] + cmd
+            cmd = [MPIEXEC, "-n", str(n)] + cmd
         res = subprocess.run(cmd, cwd=tmp_path, env=env, capture_output=True, text=True, timeout=180)
         assert res.returncode == 0, res.stderr[-3000:]
     a, b = np.load(tmp_path / "out1.npz"), np.load(tmp_path / "out2.npz")

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import dem
-from dem import geometry
+from dem.contact import geometry
 
 A = 0.002418
 SP = 1.75 * A

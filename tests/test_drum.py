@@ -380,7 +380,7 @@ def _drum_contact(shape_cmd, pos, quat, point="deepest", ends=""):
 
 def _posed(sim):
     """World rotation, centre and the shape-table row of particle 0."""
-    from dem import shape_command
+    from dem.shapes import command as shape_command
     from dem.shapes._support import rotation_matrix
     a = sim.atom.data
     t = shape_command.kernel_arrays(sim)

@@ -13,7 +13,6 @@ masses to 1e-12 relative (a sum of at most 16 terms in another order: ~1e-16).
 """
 import math
 import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -24,6 +23,8 @@ import pytest
 import dem
 import dem_process
 from dem.errors import DemError
+
+from conftest import MPIEXEC
 
 G, DT = 9.81, 1e-4
 TOP = 0.02                                         # top of the sink region (z)
@@ -359,15 +360,7 @@ if sim.comm.me == 0:
 """
 
 
-def _mpiexec():
-    for folder in (os.path.dirname(sys.executable), None):
-        found = shutil.which("mpiexec", path=folder) if folder else shutil.which("mpiexec")
-        if found:
-            return found
-    return None
-
-
-@pytest.mark.skipif(_mpiexec() is None, reason="mpiexec not found (pip install 'dem[mpi]')")
+@pytest.mark.skipif(MPIEXEC is None, reason="mpiexec not found (pip install 'dem[mpi]')")
 def test_two_ranks_remove_the_same_spheres(tmp_path):
     """The free-fall case on 1 and 2 ranks: the same count, mass (to 1e-12: the per-rank sums are added
     in another order) and ids; both ranks owned spheres and both deleted some (the count is a sum over
@@ -382,7 +375,7 @@ def test_two_ranks_remove_the_same_spheres(tmp_path):
     for n in (1, 2):
         cmd = [sys.executable, "rm.py", f"r{n}.npz", "in.rm"]
         if n > 1:
-            cmd = [_mpiexec(), "-n", str(n)] + cmd
+            cmd = [MPIEXEC, "-n", str(n)] + cmd
         res = subprocess.run(cmd, cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120)
         assert res.returncode == 0, res.stderr[-3000:]
         out[n] = np.load(tmp_path / f"r{n}.npz")

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from scipy.optimize import minimize
 
-from dem import geometry as G
+from dem.contact import geometry as G
 from dem.contact import _gjk
 from dem.shapes import (Box, Cone, Cylinder, Ellipsoid, Polyhedron, ShapeTable, Sphere, Superquadric, cube,
                         pinacoid, tetrahedron)

@@ -7,7 +7,7 @@ import h5py
 import numpy as np
 import pytest
 
-from dem.geometry import rotation
+from dem.contact.geometry import rotation
 from dem.shapes import Box, Cone, Cylinder, Ellipsoid, Sphere, Superquadric, pinacoid, tetrahedron
 from dem.shapes import _lattice, glued_mass as gm, shape_db
 from dem.shapes.base import POLYHEDRON

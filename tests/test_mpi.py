@@ -8,7 +8,6 @@ largest velocity (measured: ~1e-15 and ~1e-12). Integer observables (particles, 
 every step. A run continued on the same number of ranks from its restart is bitwise identical.
 """
 import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -17,16 +16,8 @@ import h5py
 import numpy as np
 import pytest
 
+from conftest import MPIEXEC
 
-def _mpiexec():
-    for folder in (os.path.dirname(sys.executable), None):
-        found = shutil.which("mpiexec", path=folder) if folder else shutil.which("mpiexec")
-        if found:
-            return found
-    return None
-
-
-MPIEXEC = _mpiexec()
 pytestmark = pytest.mark.skipif(MPIEXEC is None, reason="mpiexec not found (pip install 'dem[mpi]')")
 
 D = 1e-3          # particle diameter of the scripts (m)

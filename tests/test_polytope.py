@@ -1,7 +1,7 @@
 """Polytope topology, exact penetration of sharp polytopes (separating axes) and their multipoint contacts.
 
 References: closed forms for boxes; Coal's EPA (its most accurate settings, as in test_gjk.py) and dem's own
-EPA (dem.geometry.distance) on random sharp polyhedron pairs; support-function certificates computed here
+EPA (dem.contact.geometry.distance) on random sharp polyhedron pairs; support-function certificates computed here
 in numpy from the posed vertices.
 
 Tolerances: the separating-axis depth has no stopping rule, only round-off (a few ulps of the bounding
@@ -13,7 +13,7 @@ normal comes from its last face, whose plane is known to about its 1e-10 gap ove
 import numpy as np
 import pytest
 
-from dem import geometry as G
+from dem.contact import geometry as G
 from dem.contact import _polytope
 from dem.contact import polytope as P
 from dem.shapes import Box, Cylinder, Polyhedron, Sphere, cube, pinacoid, tetrahedron

@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 
-from dem.geometry import rotation
+from dem.contact.geometry import rotation
 from dem.shapes import Cylinder, Sphere
 from dem.shapes import glued_mass as gm
 

@@ -8,7 +8,7 @@
     parallel.py   processors, comm_modify, newton
 
 Commands with more to them have modules of their own: compute.py, create_atoms.py, read_data.py,
-restart.py, balance.py, shape_command.py.
+restart.py, balance.py; the `shape` command lives with the shapes (shapes/command.py).
 """
 from .box import Boundary, CreateBox, Dimension, RegionCommand, Units, find_region
 from .models import FixCommand, PairCoeff, PairStyle, Unfix

@@ -11,7 +11,7 @@ cdef enum:
     GJK_INTERSECT = 1
     NFEAT = 18             # warm-start values per pair (crust_contact's feat)
 
-cpdef enum ContactCode:    # crust_contact return codes (Python: dem.geometry)
+cpdef enum ContactCode:    # crust_contact return codes (Python: dem.contact.geometry)
     CONTACT_NONE = 0
     CONTACT_CRUST = 1      # cores apart by less than crust_a + crust_b: overlap from the GJK distance
     CONTACT_EPA = 2        # cores overlap: EPA on the cores + both crusts

@@ -1,6 +1,6 @@
 """Python entry points (tests, tools) to the sharp-polytope kernels of dem/contact/_polytope.pyx.
 
-Poses as in dem.geometry: ``x`` the centre of mass, ``q`` a unit quaternion (w, x, y, z) body -> world.
+Poses as in dem.contact.geometry: ``x`` the centre of mass, ``q`` a unit quaternion (w, x, y, z) body -> world.
 Shapes are polytope shapes (Box, cube, Polyhedron, tetrahedron, pinacoid); their topology comes from
 ``shape.topology`` (dem/shapes/topology.py). Pair styles call the nogil functions of _polytope.pxd instead.
 

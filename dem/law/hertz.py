@@ -55,7 +55,7 @@ def hooke_equivalent(E, nu, density, diameter, v, en=1.0, wall=False, steps=50):
     (or one sphere on a wall of the same material: wall=True) meeting at speed v, and a time step.
 
     Undamped Hooke reaches delta = v sqrt(m* / kn); equal to Hertz's max_overlap when kn = m* v^2 /
-    delta_max^2. The time step is the Hooke contact time (dem_contact.contact_time, with en) / steps.
+    delta_max^2. The time step is the Hooke contact time (dem.law.contact_time, with en) / steps.
     Returns a dict: kn (N/m), dt (s), tc_hooke, tc_hertz (elastic), delta_max (m), rayleigh (s), meff, reff."""
     from . import contact_time as hooke_time
     for name, value in (("E", E), ("density", density), ("diameter", diameter), ("v", v)):

@@ -298,7 +298,7 @@ def rotation_to_quaternion(R):
 def components_overlap(components, tol=OVERLAP_TOL):
     """True when two components overlap by more than ``tol`` x the smaller bounding radius (signed GJK/EPA
     distance of the true bodies): components sharing a face, an edge or a vertex do not overlap."""
-    from ..geometry import distance
+    from ..contact.geometry import distance
     comps = _components(components)
     posed = [(s, o, rotation_to_quaternion(R)) for s, o, R in comps]
     for a in range(len(posed)):

@@ -1,6 +1,6 @@
 """pair_style convex/gjk: convex particles of the shape table, mixed with spheres."""
 
-from dem import shape_command
+from dem.shapes import command as shape_command
 from dem._particles import ParticleView
 from dem.errors import DemError
 from dem.history import History
@@ -27,7 +27,7 @@ class PairConvexGJK(PairCoefficients, Pair):
     exactly as in Grains3D (Part III sec 3.2-3.3). Corners and edges are rounded by the crust radius in
     particle-particle contacts (default crust: 5 % of the inradius).
 
-    The Grains3D law (Part III eq. 10-16, `dem_contact`) acts at the contact point with the relative
+    The Grains3D law (Part III eq. 10-16, `dem.law`) acts at the contact point with the relative
     velocity of the two surfaces there, the reduced mass m_ij and torques from the lever centre of mass ->
     contact point. Coefficients per type pair as for `pair_style sphere` (rolling resistance applies
     between two spheres only; mu without ks or gamma_t gives no tangential force, with a warning). The

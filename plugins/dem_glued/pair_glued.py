@@ -1,7 +1,7 @@
 """pair_style glued/convex: glued composites, convex particles and spheres in one pair style."""
 import numpy as np
 
-from dem import shape_command
+from dem.shapes import command as shape_command
 from dem._particles import ParticleView
 from dem.errors import DemError
 from dem.history import KeyedHistory

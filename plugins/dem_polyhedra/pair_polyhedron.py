@@ -1,7 +1,7 @@
 """pair_style polyhedron/multipoint: sharp polyhedra with multipoint contacts, and plain spheres."""
 import numpy as np
 
-from dem import shape_command
+from dem.shapes import command as shape_command
 from dem._particles import ParticleView
 from dem.errors import DemError
 from dem.history import KeyedHistory

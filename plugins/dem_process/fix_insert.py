@@ -6,7 +6,7 @@ from dem.args import float_error, number
 from dem.commands import find_region
 from dem.errors import DemError, did_you_mean
 from dem.fix import Fix, Stage
-from dem.shape_command import ShapeTemplate, random_quaternions
+from dem.shapes.command import ShapeTemplate, random_quaternions
 
 from . import _fix_insert
 from .templates import RadiusDistribution, SphereTemplate

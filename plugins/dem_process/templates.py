@@ -2,7 +2,7 @@
 index), drawn from a size distribution.
 
 A template draws bounding radii (`draw_radius`), gives per-particle properties (`properties`) and its
-mean volume (`mean_volume`, for mass fractions); spheres here, shapes in dem.shape_command.ShapeTemplate.
+mean volume (`mean_volume`, for mass fractions); spheres here, shapes in dem.shapes.command.ShapeTemplate.
 `fix insert` keeps one template index per particle (its `mix`: several templates with fractions); the
 overlap test of insertion uses bounding spheres (conservative for non-spherical shapes)."""
 import math

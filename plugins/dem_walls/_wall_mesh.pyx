@@ -6,7 +6,7 @@ its bounding box, each cell listing the triangles whose plane crosses it (MeshIn
 motion never re-bins). A moving mesh is posed by a rotation M about a point C0 and a displacement D:
 world = M (X - C0) + C0 + D. Each particle is taken into the reference frame, meets the triangles of the
 cells its bounding sphere overlaps, and its contacts go back to the world frame for the shared law
-(dem_contact/apply.pxd) with m_ij = m_i and the mesh's velocity V + omega x (p - C0 - D) at the point.
+(dem/law/apply.pxd) with m_ij = m_i and the mesh's velocity V + omega x (p - C0 - D) at the point.
 
 One contact per touched feature, not per triangle: a sphere over a plane cut into triangles overlaps many
 of them but meets the surface once. A sphere meets a triangle at its closest point, inside the triangle

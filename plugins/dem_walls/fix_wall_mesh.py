@@ -3,7 +3,7 @@ import math
 
 import numpy as np
 
-from dem import shape_command
+from dem.shapes import command as shape_command
 from dem._particles import ParticleView
 from dem.args import Args
 from dem.errors import did_you_mean

@@ -28,7 +28,7 @@ class FixWallPlane(WallFix, Fix):
     eq. 3); no tangential spring at those points (curved bodies keep their one point and spring).
     `law descantes` (default `law grains3d`): Descantes' eq. 3 at every contact point of this wall instead
     of the Grains3D law, as `pair_style polyhedron/multipoint law descantes` (the same function,
-    dem_contact/law.pxd): F_n = max(0, kn delta - nu_n U_n) / alpha (no attraction, nu_n from en with
+    dem.law.descantes): F_n = max(0, kn delta - nu_n U_n) / alpha (no attraction, nu_n from en with
     m_ij = m_i), F_t = -min(nu_t |U_t|, mu F_n) t / alpha (viscous, nu_t = 2 gamma_t m_i + 2 beta_t sqrt(kn m_i),
     capped by Coulomb: give gamma_t or beta_t for friction), no spring (ks unused, no history); alpha = the points of
     `point multipoint`, 1 otherwise. The wall's law is chosen here, not taken from the pair style.

@@ -2,11 +2,11 @@
 and the call of the wall kernel on the fix's surfaces table."""
 import numpy as np
 
-from dem import shape_command
 from dem._particles import ParticleView
 from dem.errors import DemError
 from dem.law import WORDS
 from dem.law.wall_coeffs import WallCoefficients
+from dem.shapes import command as shape_command
 
 from . import _walls
 from ._walls import STAT, SURFACE as S

@@ -16,9 +16,9 @@ shape database `db` (default $DEM_SHAPE_DB, else ~/.cache/dem/shapes.h5; `none`:
 """
 import numpy as np
 
-from .errors import DemError
-from .shapes import glued_builtins as gb
-from .shapes.glued import DEFAULT_RESOLUTION, Glued
+from . import glued_builtins as gb
+from .convex_kinds import SHAPE_KINDS
+from .glued import DEFAULT_RESOLUTION, Glued
 
 COMMON = {"crust": 1, "resolution": 1, "db": 1}
 
@@ -184,7 +184,6 @@ class ShapeGlued(GluedKind):
         return out
 
     def _component(self, a, where, ws, crust):
-        from .shape_command import SHAPE_KINDS
         if not ws:
             raise a.error(f"{where}: empty component")
         kinds = {c.style: c for c in SHAPE_KINDS}

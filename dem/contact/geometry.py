@@ -12,8 +12,8 @@ import functools
 
 import numpy as np
 
-from .contact import _gjk
-from .shapes.table import ShapeTable
+from ..shapes.table import ShapeTable
+from . import _gjk
 
 __all__ = ["distance", "contact", "rotation", "DEFAULT_TOL"]
 
@@ -37,7 +37,7 @@ def _pair(shape_a, shape_b):
 
 def rotation(q):
     """Rotation matrix (body -> world) of a quaternion (w, x, y, z)."""
-    from .shapes._support import rotation_matrix
+    from ..shapes._support import rotation_matrix
     return rotation_matrix(_vec(q, 4))
 
 

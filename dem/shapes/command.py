@@ -4,7 +4,8 @@ give particles a shape (used by create_atoms, set, and insertion fixes).
     shape NAME KIND params... [file F] [crust C]
 
 Every kind is a style of kind ``shape`` (rule 2: a plugin may add more): the class builds a
-:class:`dem.shapes.Shape` from the parameters. ``sim.shapes`` is a :class:`SimShapes`, a
+:class:`dem.shapes.Shape` from the parameters (the convex kinds: convex_kinds.py; the composites:
+glued_kinds.py). ``sim.shapes`` is a :class:`SimShapes`, a
 :class:`dem.shapes.ShapeTable` that also knows the names; every rank runs the same commands, so the table
 is identical on every rank (ghosts carry only the shape index).
 
@@ -23,11 +24,12 @@ import math
 
 import numpy as np
 
-from .command import Command
-from .errors import DemError, did_you_mean
-from .shapes import (Box, Cone, Cylinder, Ellipsoid, Polyhedron, ShapeTable, Sphere, Superquadric, cube,
-                     pinacoid, tetrahedron)
-from .shapes.base import KIND_NAMES
+from ..command import Command
+from ..errors import DemError, did_you_mean
+from .base import KIND_NAMES
+from .convex_kinds import SHAPE_KINDS
+from .glued_kinds import GLUED_KINDS
+from .table import ShapeTable
 
 
 # ----- the table ------------------------------------------------------------------------------------
@@ -250,84 +252,6 @@ def random_quaternions(rng, n):
     return np.stack([b * np.cos(t2), a * np.sin(t1), a * np.cos(t1), b * np.sin(t2)], axis=1)
 
 
-# ----- shape kinds (styles of kind "shape") ---------------------------------------------------------
-class ShapeKind:
-    """Base of shape styles: `nparams` numbers (None: any count handled by `make`), `make(values, crust,
-    file)` returns a dem.shapes.Shape."""
-    kind = "shape"
-    style = None
-    usage = ""
-    nparams = 0
-
-    def __init__(self, sim):
-        self.sim = sim
-
-    def make(self, values, crust, file):
-        raise NotImplementedError
-
-
-def _simple(style_name, factory, n, usage, doc):
-    cls = type("Shape" + style_name.title().replace("/", ""), (ShapeKind,),
-               {"style": style_name, "usage": usage, "nparams": n, "__doc__": doc,
-                "make": lambda self, v, crust, file: factory(*v, crust=crust)})
-    return cls
-
-
-SHAPE_KINDS = [
-    _simple("sphere", Sphere, 1, "R", "shape NAME sphere R\n\n    Sphere of radius R (through the shape "
-            "table: spheres mixed with convex bodies; a plain sphere needs no shape)."),
-    _simple("box", Box, 3, "A B C", "shape NAME box A B C\n\n    Box of edge lengths A, B, C along the body "
-            "axes x, y, z."),
-    _simple("cube", cube, 1, "A", "shape NAME cube A\n\n    Cube of edge A."),
-    _simple("cylinder", Cylinder, 2, "R L", "shape NAME cylinder R L\n\n    Circular cylinder of radius R "
-            "and length L, axis along body z."),
-    _simple("cone", Cone, 2, "R H", "shape NAME cone R H\n\n    Right circular cone of base radius R and "
-            "height H, axis body z, apex up; the centre of mass (H/4 above the base) is the body origin."),
-    _simple("ellipsoid", Ellipsoid, 3, "A B C", "shape NAME ellipsoid A B C\n\n    Ellipsoid of semi-axes "
-            "A, B, C."),
-    _simple("superquadric", Superquadric, 5, "A B C N1 N2",
-            "shape NAME superquadric A B C N1 N2\n\n    (|x/A|^N2 + |y/B|^N2)^(N1/N2) + |z/C|^N1 <= 1, half "
-            "sizes A B C, exponents N1, N2 >= 2."),
-    _simple("tetrahedron", tetrahedron, 1, "EDGE", "shape NAME tetrahedron EDGE\n\n    Regular tetrahedron."),
-]
-
-
-class ShapePinacoid(ShapeKind):
-    """shape NAME pinacoid L G E [ALPHA]
-
-    Descantes' pinacoid: length L, width G, thickness E, end-face angle ALPHA (degrees, default 60)."""
-    style = "pinacoid"
-    usage = "L G E [ALPHA]"
-    nparams = None
-
-    def make(self, values, crust, file):
-        if len(values) not in (3, 4):
-            raise ValueError("pinacoid needs L G E [ALPHA]")
-        return pinacoid(*values, crust=crust)
-
-
-class ShapePolyhedron(ShapeKind):
-    """shape NAME polyhedron X1 Y1 Z1 X2 Y2 Z2 ... | shape NAME polyhedron file F.obj|F.stl
-
-    Convex hull of the given points (at least 4), or of the vertices of an OBJ or STL file. The body frame
-    is the principal frame through the centre of mass."""
-    style = "polyhedron"
-    usage = "X Y Z X Y Z ... | file F"
-    nparams = None
-
-    def make(self, values, crust, file):
-        if file is not None:
-            if values:
-                raise ValueError("give either vertices or a file")
-            return Polyhedron.from_file(file, crust=crust)
-        if len(values) < 12 or len(values) % 3:
-            raise ValueError("a polyhedron needs at least 4 points (x y z each) or 'file F'")
-        return Polyhedron(np.array(values).reshape(-1, 3), crust=crust)
-
-
-SHAPE_KINDS += [ShapePinacoid, ShapePolyhedron]
-
-
 class ShapeCommand(Command):
     """shape NAME KIND params... [file F] [crust C]
 
@@ -365,7 +289,7 @@ class ShapeCommand(Command):
         if name in t.names:
             raise a.error(f"shape '{name}' already exists (shape indices must not change)")
         cls = sim.registry.get("shape", kind)
-        if getattr(cls, "raw", False):       # composites read their own words (dem/shape_glued.py)
+        if getattr(cls, "raw", False):       # composites read their own words (glued_kinds.py)
             shape = cls(sim).parse(a, 2)
             sim.shapes = t.added(name, shape, words)
             sim.print(f"Shape {name} ({kind}, {len(shape.components)} components): volume {shape.volume:.6g} "
@@ -412,9 +336,4 @@ def rebuild(sim, definitions):
         cmd(words)
 
 
-def _glued_kinds():
-    from .shape_glued import GLUED_KINDS
-    return GLUED_KINDS
-
-
-SHAPE_STYLES = [ShapeCommand] + SHAPE_KINDS + _glued_kinds()
+SHAPE_STYLES = [ShapeCommand] + SHAPE_KINDS + GLUED_KINDS
