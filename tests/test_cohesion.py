@@ -18,7 +18,12 @@ order |F| v dt per jump: at 2000 steps per contact the measured e is within 0.3 
 issue's).
 
 DMT (Derjaguin, Muller & Toporov 1975): Hertz minus 2 pi w R* while in contact, zero apart: pull-off
--2 pi w R* at delta -> 0+."""
+-2 pi w R* at delta -> 0+.
+
+Liquid bridge (`cohesion capillary`): Willett, Adams, Johnson & Seville (2000)'s closed form for two
+equal spheres of radius R at surface separation S, F = 2 pi R gamma cos(theta) / (1 + 1.05 S^ + 2.5 S^2),
+S^ = S sqrt(R / V), with R = 2 R* for other pairs (a wall: 2 R_i), formed at touch and ruptured at
+(1 + theta/2) V^(1/3) (Lian, Thornton & Adams 1993). A pair at rest feels exactly F: tolerance 1e-9."""
 import math
 
 import numpy as np
@@ -53,14 +58,14 @@ def jkr_delta(a):
     return a * a / RS - math.sqrt(2 * math.pi * W * a / YSTAR)
 
 
-def pair(law, extra=""):
+def pair(law, extra="", radius=R):
     sim = dem.Simulation(screen=False)
     sim.commands(f"""
 boundary f f f
-region box block -0.001 0.001 -0.001 0.001 -0.001 0.001
+region box block {-10 * radius} {10 * radius} {-10 * radius} {10 * radius} {-10 * radius} {10 * radius}
 create_box 1 box
-create_atoms 1 single {-R - 1e-5!r} 0 0 radius {R} density {RHO}
-create_atoms 1 single {R + 1e-5!r} 0 0 radius {R} density {RHO}
+create_atoms 1 single {-1.1 * radius!r} 0 0 radius {radius} density {RHO}
+create_atoms 1 single {1.1 * radius!r} 0 0 radius {radius} density {RHO}
 pair_style sphere
 pair_coeff * * {law}
 neighbor 0 bin
@@ -70,12 +75,12 @@ thermo 0
     return sim
 
 
-def force_at(sim, delta):
+def force_at(sim, delta, radius=R):
     """Place the pair at overlap delta (at rest) and return the x force on the particle at +x, and the
     contacts, after one step (no integrator: the particles stay where they are put)."""
     tags = sim.atom.local("tag")
     x = sim.atom.local("x")
-    half = R - 0.5 * delta
+    half = radius - 0.5 * delta
     x[:] = [[-half, 0, 0] if t == 1 else [half, 0, 0] for t in tags]
     sim.run(1)
     f = sim.atom.local("f")[np.argsort(sim.atom.local("tag"))]
@@ -189,3 +194,62 @@ thermo 0
         assert n == 1 and abs(fz / expected - 1) < 1e-6, (delta, fz, expected)
     assert at(1.01 * dc) == (0.0, 0)
     assert at(0.5 * dc) == (0.0, 0)
+
+
+# a water bridge between glass beads of Willett et al. 2000's size: R = 2.381 mm, V = 74.2 nl
+# (V / R^3 = 0.0055), gamma 20.6 mN/m (their silicone oil), contact angle 10 degrees
+RB, VB, GAMMA, THETA = 2.381e-3, 74.2e-12, 20.6e-3, 10.0
+BRIDGE = (f"kn 1e4 en 1 cohesion capillary liquid_volume {VB} surface_tension {GAMMA} "
+          f"contact_angle {THETA}")
+
+
+def willett(s, radius):
+    """Willett et al. (2000), the closed form for two equal spheres of `radius` at surface separation s."""
+    sh = s * math.sqrt(radius / VB)
+    return 2 * math.pi * radius * GAMMA * math.cos(math.radians(THETA)) / (1 + 1.05 * sh + 2.5 * sh * sh)
+
+
+def test_capillary_bridge_force_and_rupture_on_a_pair():
+    """Two equal spheres (R* = R/2: Willett's R is 2 R*) with a Hooke contact and a bridge: apart, the
+    force is Willett's to round-off (tolerance 1e-9); in contact, kn delta minus the bridge at touch. The
+    bridge forms at touch and breaks at S_c = (1 + theta/2) V^(1/3) (Lian et al. 1993)."""
+    sc = (1 + 0.5 * math.radians(THETA)) * VB ** (1.0 / 3.0)
+    sim = pair(BRIDGE, radius=RB)
+    assert force_at(sim, -0.5 * sc, RB) == (0.0, 0)          # apart, never touched: no bridge
+    fx, n = force_at(sim, 1e-6 * RB, RB)
+    assert n == 1 and abs(fx / (1e4 * 1e-6 * RB - willett(0, RB)) - 1) < 1e-9
+    for s in (0.0, 0.1 * sc, 0.5 * sc, 0.99 * sc):
+        fx, n = force_at(sim, -s, RB)
+        assert n == 1 and abs(fx / -willett(s, RB) - 1) < 1e-9, (s, fx, -willett(s, RB))
+    assert force_at(sim, -1.01 * sc, RB) == (0.0, 0)         # ruptured
+    assert force_at(sim, -0.5 * sc, RB) == (0.0, 0)          # and gone until the next touch
+
+
+def test_capillary_bridge_on_a_wall():
+    """Sphere and plane: Willett's R is 2 R_i (4 pi R gamma cos(theta) at touch), S^ = S sqrt(2 R_i / V)."""
+    sc = (1 + 0.5 * math.radians(THETA)) * VB ** (1.0 / 3.0)
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+boundary f f f
+region box block -0.01 0.01 -0.01 0.01 0 0.02
+create_box 1 box
+create_atoms 1 single 0 0 {RB!r} radius {RB} density {RHO}
+pair_style sphere
+pair_coeff * * kn 1 en 1
+fix w all wall/plane zplane 0 NULL {BRIDGE}
+timestep 1e-9
+thermo 0
+""")
+    wall = sim.modify.find("w")
+
+    def at(gap):
+        sim.atom.local("x")[0, 2] = RB + gap
+        sim.run(1)
+        return sim.atom.local("f")[0, 2], wall.ncontacts
+
+    assert at(0.5 * sc) == (0.0, 0)
+    at(-1e-7)
+    for s in (0.2 * sc, 0.8 * sc):
+        fz, n = at(s)
+        assert n == 1 and abs(fz / -willett(s, 2 * RB) - 1) < 1e-9, (s, fz)
+    assert at(1.01 * sc) == (0.0, 0)

@@ -124,6 +124,7 @@ pair_style sphere
 """
 ATOM = "create_atoms 1 single 0.5 0.5 0.5 radius 0.01 density 2500\ntimestep 1e-6\n"
 JKR = "normal jkr E 1e7 nu 0.3 w 0.05 en 0.5 mu 0.3"
+BRIDGE = "cohesion capillary liquid_volume 1e-11 surface_tension 0.07 contact_angle 20"
 BAD = [
     # parse time
     ("pair_coeff * * normal jkr E 1e7 nu 0.3 en 0.5 mu 0.3\n", "normal jkr needs w"),
@@ -147,6 +148,17 @@ BAD = [
     (f"pair_coeff * * {JKR}\nfix w all wall/plane zplane 0 NULL type\n", "type"),
     (f"pair_coeff * * {JKR}\nfix w all wall/drum z 0.5 0.5 0.4 normal dmt E 1e7 nu 0.3 w -1 en 0.5 mu 0\n",
      "w (work of adhesion) must be > 0"),
+    (f"pair_coeff * * kn 1e5 en 0.5 {BRIDGE.replace('angle 20', 'angle 95')}\n",
+     "contact_angle must be in [0, 90) degrees"),
+    (f"pair_coeff * * kn 1e5 en 0.5 {BRIDGE.replace('volume 1e-11', 'volume 0')}\n",
+     "liquid_volume must be > 0"),
+    (f"pair_coeff * * kn 1e5 en 0.5 {BRIDGE.replace('tension 0.07', 'tension nan')}\n",
+     "surface_tension must be a finite number, got 'nan'"),
+    ("pair_coeff * * kn 1e5 en 0.5 cohesion capillary liquid_volume 1e-11 contact_angle 20\n",
+     "cohesion capillary needs surface_tension"),
+    ("pair_coeff * * kn 1e5 en 0.5 cohesion capilary liquid_volume 1e-11\n",
+     "cohesion must be one of none, capillary, got 'capilary' (did you mean 'capillary'"),
+    ("pair_coeff * * kn 1e5 en 0.5 liquid_volume 1e-11\n", "'liquid_volume' is a coefficient of cohesion capillary"),
 ]
 BAD_AT_RUN = [
     # the line that leaves its material to types that have none
@@ -179,10 +191,11 @@ def test_material_missing_at_the_run_names_the_pair_coeff_line(lines, bad, messa
 
 @pytest.mark.parametrize("style, shape", [("convex/gjk", "cube 0.01"), ("glued/convex", "cross3d 0.01"),
                                           ("polyhedron/multipoint", "cube 0.01")])
-def test_parts_a_pair_style_cannot_keep_are_refused_at_the_run(style, shape):
+@pytest.mark.parametrize("law", [JKR, f"kn 1e5 en 0.5 {BRIDGE}", "kn 1e5 en 0.5 rolling epsd2 mu_roll 0.1"])
+def test_parts_a_pair_style_cannot_keep_are_refused_at_the_run(style, shape, law):
     sim = dem.Simulation(screen=False)
     sim.commands(BOX.replace("pair_style sphere", f"shape s {shape}\npair_style {style}") +
-                 f"pair_coeff * * {JKR}\ncreate_atoms 1 single 0.5 0.5 0.5 shape s density 2500\n"
+                 f"pair_coeff * * {law}\ncreate_atoms 1 single 0.5 0.5 0.5 shape s density 2500\n"
                  "timestep 1e-6\n")
     with pytest.raises(dem.DemError, match="pair_style sphere has them"):
         sim.commands("run 1")

@@ -23,10 +23,11 @@ from ._columns import COLUMNS, PARTS
 
 # columns of a coefficient row: defined once, in row.pxd
 (KN, BETA, MU, GAMMA_T, KS, MU_ROLL, EN, BETA_T, NORMAL, YSTAR, GSTAR, DAMPING, TANGENTIAL, LIMIT, ROLLING,
- ETA_ROLL, W, H_ROLL, H_BOND, NCOEFF, XI_WIDTH, ROLL_WIDTH, BOND_WIDTH) = (COLUMNS[k] for k in (
-    "KN", "BETA", "MU", "GAMMA_T", "KS", "MU_ROLL", "EN", "BETA_T", "NORMAL", "YSTAR", "GSTAR", "DAMPING",
-    "TANGENTIAL", "LIMIT", "ROLLING", "ETA_ROLL", "W", "H_ROLL", "H_BOND", "NCOEFF", "XI_WIDTH", "ROLL_WIDTH",
-    "BOND_WIDTH"))
+ ETA_ROLL, W, H_ROLL, H_BOND, COHESION, LIQUID, TENSION, ANGLE, NCOEFF, XI_WIDTH, ROLL_WIDTH, BOND_WIDTH) = (
+    COLUMNS[k] for k in (
+        "KN", "BETA", "MU", "GAMMA_T", "KS", "MU_ROLL", "EN", "BETA_T", "NORMAL", "YSTAR", "GSTAR", "DAMPING",
+        "TANGENTIAL", "LIMIT", "ROLLING", "ETA_ROLL", "W", "H_ROLL", "H_BOND", "COHESION", "LIQUID", "TENSION",
+        "ANGLE", "NCOEFF", "XI_WIDTH", "ROLL_WIDTH", "BOND_WIDTH"))
 HERTZ_FAMILY = ("hertz", "jkr", "dmt")
 ADHESIVE = ("jkr", "dmt")
 KEYWORDS = {"kn": "normal stiffness (N/m) of normal hooke",
@@ -38,8 +39,11 @@ KEYWORDS = {"kn": "normal stiffness (N/m) of normal hooke",
             "mu_roll": "rolling resistance coefficient (dimensionless, times R_eff |F_n|)",
             "E": "Young's modulus (Pa), > 0", "nu": "Poisson's ratio, -1 < nu <= 0.5",
             "w": "work of adhesion (J/m^2), > 0: twice the surface energy of one body",
-            "eta_roll": "rolling damping of rolling epsd, a fraction of critical (0 <= eta_roll)"}
-SELECTORS = ("normal", "damping", "tangential", "rolling")
+            "eta_roll": "rolling damping of rolling epsd, a fraction of critical (0 <= eta_roll)",
+            "liquid_volume": "volume of a liquid bridge (m^3), > 0",
+            "surface_tension": "surface tension of the liquid (N/m), > 0",
+            "contact_angle": "contact angle of the liquid on the solid (degrees, 0 <= angle < 90)"}
+SELECTORS = ("normal", "damping", "tangential", "rolling", "cohesion")
 # the numbers each part takes: the part's own coefficients and which of them a line must give
 PART_WORDS = {("normal", "hooke"): ("kn",), ("normal", "hertz"): ("E", "nu"), ("normal", "jkr"): ("E", "nu", "w"),
               ("normal", "dmt"): ("E", "nu", "w"),
@@ -47,9 +51,11 @@ PART_WORDS = {("normal", "hooke"): ("kn",), ("normal", "hertz"): ("E", "nu"), ("
               ("tangential", "spring"): ("mu", "ks"), ("tangential", "mindlin"): ("mu",),
               ("tangential", "viscous"): ("mu",),
               ("rolling", "constant"): ("mu_roll",), ("rolling", "epsd"): ("mu_roll", "eta_roll"),
-              ("rolling", "epsd2"): ("mu_roll",)}
+              ("rolling", "epsd2"): ("mu_roll",), ("cohesion", "none"): (),
+              ("cohesion", "capillary"): ("liquid_volume", "surface_tension", "contact_angle")}
 REQUIRED = {"hooke": ("kn", "en"), "hertz": ("E", "nu", "en", "mu"), "jkr": ("E", "nu", "w", "en", "mu"),
-            "dmt": ("E", "nu", "w", "en", "mu"), "epsd": ("mu_roll", "eta_roll"), "epsd2": ("mu_roll",)}
+            "dmt": ("E", "nu", "w", "en", "mu"), "epsd": ("mu_roll", "eta_roll"), "epsd2": ("mu_roll",),
+            "capillary": ("liquid_volume", "surface_tension", "contact_angle")}
 WORDS = ("model",) + SELECTORS + tuple(KEYWORDS)      # every word of a law line (for the fixes' parsers)
 MATERIAL = ("E", "nu", "w")      # of each type: a line for types I != J may leave them to pair_coeff I I
 DEFAULT_PARTS = {"hooke": {"damping": "restitution", "tangential": "spring"},
@@ -78,6 +84,7 @@ def _parts(words, what):
     for sel, value in DEFAULT_PARTS["hooke" if normal == "hooke" else "hertz"].items():
         parts.setdefault(sel, value)
     parts.setdefault("rolling", "constant")
+    parts.setdefault("cohesion", "none")
     return parts, rest
 
 
@@ -117,8 +124,9 @@ def parse(words, what, required=("kn", "en"), same_type=True):
         need[_name(parts)] = REQUIRED[normal]
     else:                      # types I != J only: the material may come from pair_coeff I I and J J
         need[_name(parts)] = [k for k in REQUIRED[normal] if k not in MATERIAL]
-    if parts["rolling"] in REQUIRED:
-        need[f"rolling {parts['rolling']}"] = REQUIRED[parts["rolling"]]
+    for sel in ("rolling", "cohesion"):
+        if parts[sel] in REQUIRED:
+            need[f"{sel} {parts[sel]}"] = REQUIRED[parts[sel]]
     for name, keys in need.items():
         missing = [k for k in keys if k not in out]
         if missing:
@@ -157,6 +165,12 @@ def check(c, what):
         raise DemError(f"{what}: nu (Poisson's ratio) must be in (-1, 0.5], got {c['nu']:g}")
     if "w" in c and not c["w"] > 0:
         raise DemError(f"{what}: w (work of adhesion) must be > 0, got {c['w']:g}")
+    for k in ("liquid_volume", "surface_tension"):
+        if k in c and not c[k] > 0:
+            raise DemError(f"{what}: {k} must be > 0, got {c[k]:g}")
+    if "contact_angle" in c and not 0 <= c["contact_angle"] < 90:
+        raise DemError(f"{what}: contact_angle must be in [0, 90) degrees (a wetting liquid), got "
+                       f"{c['contact_angle']:g}")
     for k in ("mu", "gamma_t", "beta_t", "ks", "mu_roll", "eta_roll"):
         if c.get(k, 0.0) < 0:
             raise DemError(f"{what}: {k} must be >= 0")
@@ -219,6 +233,8 @@ def row(c):
     r[BETA_T] = c.get("beta_t", 0.0)
     r[ETA_ROLL] = c.get("eta_roll", 0.0)
     r[W] = c.get("w", 0.0)
+    r[LIQUID], r[TENSION] = c.get("liquid_volume", 0.0), c.get("surface_tension", 0.0)
+    r[ANGLE] = math.radians(c.get("contact_angle", 0.0))
     r[H_ROLL] = r[H_BOND] = -1.0
     if c.get("normal", "hooke") == "hooke":
         r[KN] = c["kn"]
@@ -251,8 +267,12 @@ def _needs(rows):
     xi = np.any((tan == PARTS["tangential"]["spring"]) & (rows[..., KS] > 0)) or np.any(
         (tan == PARTS["tangential"]["mindlin"]) & (rows[..., MU] > 0))
     roll = np.any((rows[..., ROLLING] != PARTS["rolling"]["constant"]) & (rows[..., MU_ROLL] > 0))
-    bond = np.any(rows[..., NORMAL] == PARTS["normal"]["jkr"])
-    return bool(xi), bool(roll), bool(bond)
+    return bool(xi), bool(roll), bool(np.any(_bonds(rows)))
+
+
+def _bonds(rows):
+    """Which rows act beyond contact once touched (JKR, a liquid bridge): they keep the bond flag."""
+    return (rows[..., NORMAL] == PARTS["normal"]["jkr"]) | (rows[..., COHESION] != PARTS["cohesion"]["none"])
 
 
 def history_layout(rows):
@@ -268,7 +288,7 @@ def history_layout(rows):
         rows[..., H_ROLL] = np.where(rows[..., ROLLING] != PARTS["rolling"]["constant"], width, -1.0)
         width += ROLL_WIDTH
     if bond:
-        rows[..., H_BOND] = np.where(rows[..., NORMAL] == PARTS["normal"]["jkr"], width, -1.0)
+        rows[..., H_BOND] = np.where(_bonds(rows), width, -1.0)
         width += BOND_WIDTH
     return width
 
@@ -280,12 +300,14 @@ def needs_history(rows):
 
 def max_reach(rows, reff):
     """The largest distance beyond contact at which a row still acts, for contacts of R* up to reff (the
-    neighbor list adds it to the pair cutoff): JKR's pull-off distance 3/4 (pi^2 w^2 R* / Y*^2)^(1/3)."""
+    neighbor list adds it to the pair cutoff): JKR's pull-off distance 3/4 (pi^2 w^2 R* / Y*^2)^(1/3), a
+    liquid bridge's rupture distance (1 + theta / 2) V^(1/3)."""
     rows = np.asarray(rows).reshape(-1, NCOEFF)
     jkr = rows[rows[:, NORMAL] == PARTS["normal"]["jkr"]]
-    if not len(jkr):
-        return 0.0
-    return float(np.max(0.75 * np.cbrt(math.pi ** 2 * jkr[:, W] ** 2 * reff / jkr[:, YSTAR] ** 2)))
+    bridge = rows[rows[:, COHESION] == PARTS["cohesion"]["capillary"]]
+    reach = [0.75 * np.cbrt(math.pi ** 2 * jkr[:, W] ** 2 * reff / jkr[:, YSTAR] ** 2),
+             (1.0 + 0.5 * bridge[:, ANGLE]) * np.cbrt(bridge[:, LIQUID])]
+    return float(max((np.max(r) for r in reach if len(r)), default=0.0))
 
 
 def contact_time(kn, en, meff):

@@ -1,10 +1,11 @@
 # cython: language_level=3
 """The contact law at one contact point, composed of the parts its coefficient row names (row.pxd): a
-normal part (normal.pxd: Hooke, Hertz, JKR, DMT), a damping part (damping.pxd), a tangential part
-(tangential.pxd: history spring, Mindlin, viscous) and, applied by apply.pxd after the weight, a rolling
-part (rolling.pxd). The seed models are combinations: Grains3D (Part III eq. 10-16) is Hooke + restitution
-damping + spring; LIGGGHTS's Hertz-Mindlin is Hertz + Hertz damping + Mindlin; Descantes 2022 eq. 3 is
-Hooke + restitution damping that never attracts (C_LIMIT) + viscous friction.
+normal part (normal.pxd: Hooke, Hertz, JKR, DMT), a cohesion part that adds its pull (cohesion.pxd: a
+liquid bridge), a damping part (damping.pxd), a tangential part (tangential.pxd: history spring, Mindlin,
+viscous) and, applied by apply.pxd after the weight, a rolling part (rolling.pxd). Apart (delta < 0) only
+JKR and a bridge act, without friction. The seed models are combinations: Grains3D (Part III eq. 10-16)
+is Hooke + restitution damping + spring; LIGGGHTS's Hertz-Mindlin is Hertz + Hertz damping + Mindlin;
+Descantes 2022 eq. 3 is Hooke + restitution damping that never attracts (C_LIMIT) + viscous friction.
 
     F_n = (F_el(delta) - gamma_n U_rn) n,     F_t from the tangential part, capped by mu |F_n + shift|
 
@@ -13,10 +14,11 @@ Hooke + restitution damping that never attracts (C_LIMIT) + viscous friction.
 (XI_WIDTH values), the rolling spring and the bond flag at the row's offsets. With `advance` false (setup
 passes) history is read but never changed. Returns the elastic energy; R receives what the rolling part
 needs."""
-from dem.law.row cimport (C_LIMIT, C_H_BOND, C_NORMAL, N_JKR, XI_WIDTH, ROLL_WIDTH, BOND_WIDTH, NCOEFF)
+from dem.law.row cimport C_LIMIT, C_H_BOND, C_NORMAL, C_COHESION, N_JKR, K_NONE, XI_WIDTH
 from dem.law.normal cimport Normal, normal_force, jkr_reach
 from dem.law.damping cimport normal_damping
 from dem.law.tangential cimport tangential_force
+from dem.law.cohesion cimport cohesion_force, cohesion_reach
 
 
 cdef struct ForRolling:
@@ -32,14 +34,26 @@ cdef inline double evaluate(const double* c, double delta, const double* n, cons
     cdef double vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2]
     cdef double w, fnmag
     cdef int d
-    normal_force(c, delta, reff, &N)
+    cdef bint apart = delta < 0.0 and <int>c[C_NORMAL] != N_JKR     # only a bridge acts (JKR holds apart)
+    if apart:
+        N.f = N.k = N.a = N.shift = N.energy = 0.0
+    else:
+        normal_force(c, delta, reff, &N)
+    if <int>c[C_COHESION] != K_NONE:
+        cohesion_force(c, delta, reff, &N)
     fnmag = N.f - normal_damping(c, N.k, meff, &w) * vn
     if c[C_LIMIT] != 0.0 and fnmag < 0.0:
         fnmag = 0.0
     for d in range(3):
         fn[d] = fnmag * n[d]
         vt[d] = vr[d] - vn * n[d]
-    tangential_force(c, w, N.a, fnmag + N.shift, meff, n, vt, h, dt, advance, ft)
+    if apart:              # no friction without contact; the tangential spring starts again at touch
+        ft[0] = ft[1] = ft[2] = 0.0
+        if advance and h != NULL:
+            for d in range(XI_WIDTH):
+                h[d] = 0.0
+    else:
+        tangential_force(c, w, N.a, fnmag + N.shift, meff, n, vt, h, dt, advance, ft)
     if advance and h != NULL and c[C_H_BOND] >= 0.0:
         h[<int>c[C_H_BOND]] = 1.0          # the bond holds (beyond contact too) until its reach
     R.kn = N.k
@@ -48,10 +62,12 @@ cdef inline double evaluate(const double* c, double delta, const double* n, cons
 
 
 cdef inline double reach(const double* c, double reff) noexcept nogil:
-    """How far apart (> 0) a contact that has touched keeps acting: JKR's pull-off distance; 0 otherwise."""
-    if <int>c[C_NORMAL] == N_JKR:
+    """How far apart (> 0) a contact that has touched keeps acting: JKR's pull-off distance, a liquid
+    bridge's rupture distance; 0 otherwise."""
+    cdef double r = cohesion_reach(c) if <int>c[C_COHESION] != K_NONE else 0.0
+    if <int>c[C_NORMAL] == N_JKR and jkr_reach(c, reff) > r:
         return jkr_reach(c, reff)
-    return 0.0
+    return r
 
 
 cdef inline bint bonded(const double* c, const double* h) noexcept nogil:

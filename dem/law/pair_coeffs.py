@@ -75,8 +75,8 @@ class PairCoefficients:
         self.table[:] = descantes(self.rows) if getattr(self, "law", "grains3d") == "descantes" else self.rows
         self.history_width = history_layout(self.table[1:, 1:])
         if self.max_history is not None and self.history_width > self.max_history:
-            raise DemError(f"pair_style {self.style}: normal jkr and rolling epsd/epsd2 keep history this pair "
-                           f"style has no room for yet", hint="pair_style sphere has them")
+            raise DemError(f"pair_style {self.style}: normal jkr, cohesion capillary and rolling epsd/epsd2 keep "
+                           f"history this pair style has no room for yet", hint="pair_style sphere has them")
         self.reach = max_reach(self.table[1:, 1:], self.sim.modify.max_radius())
         return self.history_width > 0
 

@@ -24,7 +24,11 @@ cdef enum:                 # columns of a coefficient row
     C_W = 16               # JKR, DMT: work of adhesion w (J/m^2)
     C_H_ROLL = 17          # history: offset of the rolling spring (3 values), or -1
     C_H_BOND = 18          # history: offset of the bond flag (forces beyond contact), or -1
-    NCOEFF = 19
+    C_COHESION = 19        # the cohesion part: K_NONE, K_CAPILLARY
+    C_LIQUID = 20          # capillary: liquid volume of the bridge (m^3)
+    C_TENSION = 21         # capillary: surface tension of the liquid (N/m)
+    C_ANGLE = 22           # capillary: contact angle (radians)
+    NCOEFF = 23
 
 cdef enum:                 # normal parts (c[C_NORMAL])
     N_HOOKE = 0            # kn delta
@@ -45,6 +49,10 @@ cdef enum:                 # rolling parts (c[C_ROLLING])
     R_CONSTANT = 0         # mu_roll R* |F_n| against the relative spin (none when mu_roll = 0)
     R_EPSD = 1             # elastic-plastic spring-dashpot (Ai et al. 2011 model C)
     R_EPSD2 = 2            # elastic-plastic spring, no dashpot (LIGGGHTS's epsd2)
+
+cdef enum:                 # cohesion parts (c[C_COHESION]): forces added to the normal part's
+    K_NONE = 0
+    K_CAPILLARY = 1        # a liquid bridge (Willett et al. 2000), from touch to its rupture distance
 
 cdef enum:
     XI_WIDTH = 3           # values of the tangential spring history xi (first in a contact's history)

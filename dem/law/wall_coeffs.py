@@ -72,8 +72,9 @@ class WallCoefficients:
             self.table[:] = descantes(self.table)
         self.law_width = history_layout(self.table[:, 1:])
         if self.max_history is not None and self.law_width > self.max_history:
-            raise DemError(f"{self._where()}fix {self.id} {self.style}: normal jkr and rolling epsd/epsd2 keep "
-                           f"history this wall has no room for yet", hint="fix wall/plane and wall/drum have them")
+            raise DemError(f"{self._where()}fix {self.id} {self.style}: normal jkr, cohesion capillary and rolling "
+                           f"epsd/epsd2 keep history this wall has no room for yet",
+                           hint="fix wall/plane and wall/drum have them")
         self.use_history = self.law_width > 0
         if self.use_history:
             sim.atom.add_field(self.history_name, (self.history_width(nwalls),), np.float64, 0.0)

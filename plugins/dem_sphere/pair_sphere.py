@@ -1,4 +1,4 @@
-"""pair_style sphere: spheres with the Grains3D contact law."""
+"""pair_style sphere: spheres with the contact law in parts (dem/law)."""
 import numpy as np
 
 from dem._particles import ParticleView
@@ -16,6 +16,9 @@ class PairSphere(PairCoefficients, Pair):
 
     pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [beta_t BT] [ks KS] [mu_roll MUR]
     pair_coeff I J model hertz E E nu NU en EN mu MU [mu_roll MUR]
+    pair_coeff I J [normal hooke|hertz|jkr|dmt] [cohesion none|capillary] [damping restitution|hertz]
+                   [tangential spring|mindlin|viscous] [rolling constant|epsd|epsd2] COEFFICIENTS
+                   (kn E nu w en mu ks gamma_t beta_t mu_roll eta_roll liquid_volume surface_tension contact_angle)
 
     Spheres in contact when their surfaces overlap (overlap delta, normal n along the line of centres,
     contact point in the middle of the overlap). The Grains3D law (Part III eq. 10-16) per contact:
@@ -44,6 +47,20 @@ class PairSphere(PairCoefficients, Pair):
     (at least 1 m/s). Formulas and validation: docs/hertz.md. Example (glass beads)::
 
         pair_coeff * * model hertz E 6.3e10 nu 0.24 en 0.9 mu 0.3
+
+    The law in parts (docs/contact_law.md): `normal jkr E .. nu .. w ..` (Johnson-Kendall-Roberts
+    adhesion, w the work of adhesion in J/m^2: the bond forms at touch and holds apart until the pull-off
+    distance 3/4 (pi^2 w^2 R* / Y*^2)^(1/3), which the neighbor cutoff includes), `normal dmt` (Hertz
+    minus 2 pi w R* in contact), `rolling epsd mu_roll .. eta_roll ..` (elastic-plastic spring-dashpot
+    rolling resistance, Ai et al. 2011; `epsd2` without the dashpot), `cohesion capillary liquid_volume ..
+    surface_tension .. contact_angle ..` (a liquid bridge, Willett et al. 2000, from touch to its rupture
+    distance (1 + theta/2) V^(1/3)). A line for types I != J may leave
+    E, nu and w out: each type's own (pair_coeff I I) is mixed, 1/Y* = (1 - nu_i^2)/E_i + (1 - nu_j^2)/E_j.
+    Example (a cohesive powder of two materials)::
+
+        pair_coeff 1 1 normal jkr E 1e8 nu 0.3 w 0.05 en 0.5 mu 0.5 rolling epsd mu_roll 0.1 eta_roll 0.3
+        pair_coeff 2 2 normal jkr E 5e8 nu 0.25 w 0.02 en 0.5 mu 0.5 rolling epsd mu_roll 0.1 eta_roll 0.3
+        pair_coeff 1 2 normal jkr en 0.5 mu 0.5 rolling epsd mu_roll 0.1 eta_roll 0.3
     """
 
 

@@ -16,6 +16,7 @@ class FixWallDrum(WallFix, Fix):
     """fix ID group wall/drum AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate]
         [carry GROUP] [point deepest|centroid|multipoint] [law grains3d|descantes]
         [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR | model hertz E E nu NU en EN mu MU mu_roll MR]
+        [normal|damping|tangential|rolling PART ...] [type T]
 
     A rotating cylindrical wall (a drum) with the particles inside. AXIS is x, y or z; the axis passes
     through (C1, C2) in the two other coordinates, in x, y, z order (as `region cylinder`); RADIUS is the
@@ -50,6 +51,7 @@ class FixWallDrum(WallFix, Fix):
     capped by Coulomb against the moving wall, no spring), as `fix wall/plane`. `model hertz`:
     Hertz-Mindlin as `fix wall/plane` (the drum and its ends of the particles' material,
     R* = r_i: the curvature of the drum, which makes R* larger by about r_i / RADIUS, is left out).
+    The parts of the law (`normal jkr`, `rolling epsd`, ...) and `type T` as `fix wall/plane`.
 
     Redefining the fix (same ID, e.g. `rpm 0` to fill, then `rpm 40` to rotate) keeps the drum angle;
     the ramp starts again from the redefinition. Global state kept for restarts: the drum angle and the

@@ -26,6 +26,7 @@ class FixWallMesh(WallCoefficients, Fix):
         [table FILE [origin OX OY OZ axis AX AY AZ]]
         [point deepest|multipoint] [law grains3d|descantes]
         [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR | model hertz E E nu NU en EN mu MU mu_roll MR]
+        [normal hooke|hertz|dmt ...] [type T]
 
     A rigid wall made of a triangle mesh read from FILE: an STL file (ASCII or binary) or a Wavefront OBJ
     (`.obj`; polygons are split into triangles), the path relative to the folder dem runs in or, if not
@@ -57,7 +58,9 @@ class FixWallMesh(WallCoefficients, Fix):
       `fix wall/plane`: a cube lying on a mesh floor on its 4 corners); at a triangle's edge or vertex it
       keeps one point.
     * Law and coefficients as `fix wall/plane` (m_ij = m_i, the wall of infinite mass; without them
-      those of each type with itself from pair_coeff; `law descantes`, `model hertz` with R* = R_i).
+      those of each type with itself from pair_coeff; `law descantes`, `model hertz` with R* = R_i;
+      `type T`). The parts that keep more history than the tangential spring (`normal jkr`, `rolling
+      epsd|epsd2`) are not available on meshes yet: an error at the run says so.
       The tangential spring is kept per particle and contact (6 at most at once), matched from step to
       step by the contact normal (within 60 degrees): it survives a move from one triangle to the next,
       rebuilds, restarts and migration between ranks.

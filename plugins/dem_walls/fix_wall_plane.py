@@ -10,7 +10,8 @@ from .wall_fix import POINT_MODES, S, WallFix, law_name, plane
 
 class FixWallPlane(WallFix, Fix):
     """fix ID group wall/plane xplane|yplane|zplane LO HI [...] [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR]
-        [model hertz E E nu NU en EN mu MU mu_roll MR] [point deepest|centroid|multipoint] [law grains3d|descantes]
+        [model hertz E E nu NU en EN mu MU mu_roll MR] [normal|damping|tangential|rolling PART ...] [type T]
+        [point deepest|centroid|multipoint] [law grains3d|descantes]
 
     Fixed planar walls. Each `xplane LO HI` adds a wall at x = LO facing +x and one at x = HI facing -x;
     NULL skips one (`zplane 0 NULL`: a floor only). Particles touching a wall feel the Grains3D law with
@@ -37,7 +38,11 @@ class FixWallPlane(WallFix, Fix):
     pair_coeff. Example: `fix floor all wall/plane zplane 0.0 NULL kn 1000 en 0.5 mu 0.5 ks 285.7`.
     `model hertz E .. nu .. en .. mu ..` (as pair_style sphere's): Hertz-Mindlin against the wall, the wall
     of the particles' material E, nu, with R* = r_i (a shaped particle: the radius of its sphere of equal
-    volume) and m* = m_i; not with `law descantes`. Taken from pair_coeff I I when that is model hertz."""
+    volume) and m* = m_i; not with `law descantes`. Taken from pair_coeff I I when that is model hertz.
+    Any part of the law (docs/contact_law.md: `normal jkr|dmt`, `rolling epsd|epsd2`, ...) with the same
+    words as pair_coeff; a JKR sphere stays bonded to the wall until its pull-off distance. `type T`: the
+    wall is of particle type T (a type with no particles gives a wall of its own material), and a
+    particle of type I meets it with the law of pair_coeff T I (materials mixed)."""
 
     style = "wall/plane"
     stages = Stage.POST_FORCE
