@@ -34,7 +34,8 @@ cdef inline double evaluate(const double* c, double delta, const double* n, cons
     cdef double vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2]
     cdef double w, fnmag
     cdef int d
-    cdef bint apart = delta < 0.0 and <int>c[C_NORMAL] != N_JKR     # only a bridge acts (JKR holds apart)
+    # apart only a bridge acts, and JKR within its pull-off distance (a bridge may reach further)
+    cdef bint apart = delta < 0.0 and (<int>c[C_NORMAL] != N_JKR or delta <= -jkr_reach(c, reff))
     if apart:
         N.f = N.k = N.a = N.shift = N.energy = 0.0
     else:
