@@ -83,7 +83,7 @@ def test_impact_of_two_materials_has_the_mixed_hertz_contact(case):
     assert abs(closed_form(ys1, 0.5 * M, 0.5 * R, V)[0] / dmax - 1) > 0.1
 
 
-def test_mixed_rows_and_history_layout():
+def test_mixed_rows_history_layout_and_plans():
     sim = dem.Simulation(screen=False)
     sim.commands(f"""
 boundary f f f
@@ -105,6 +105,8 @@ create_atoms 1 single 0.5 0.5 0.5 radius 0.01 density 2500
     assert math.isclose(table[2, 1, law.GSTAR], 1 / ((2 - nu1) / g1 + (2 - nu2) / g2), rel_tol=1e-14)
     assert math.isclose(table[1, 3, law.W], math.sqrt(0.4 * 0.1), rel_tol=1e-14)   # Berthelot
     assert table[1, 3, law.NORMAL] == law.PARTS["normal"]["jkr"]
+    # plans: the common combinations skip the checks of what they lack
+    assert table[1, 2, law.PLAN] == law.PLANS["hertz_mindlin"] and table[1, 3, law.PLAN] == law.PLANS["general"]
     # history: xi (3), the rolling spring (3) of the epsd row, the bond of the jkr rows
     assert sim.pair.history_width == 7
     assert table[3, 3, law.H_ROLL] == 3 and table[1, 1, law.H_ROLL] == -1
@@ -218,9 +220,12 @@ def test_every_old_line_makes_the_row_it_always_made():
     assert r[law.NORMAL] == r[law.DAMPING] == r[law.TANGENTIAL] == r[law.ROLLING] == r[law.LIMIT] == 0
     assert (r[law.KN], r[law.KS], r[law.GAMMA_T], r[law.BETA_T], r[law.MU], r[law.MU_ROLL]) == (
         1e5, 2e4, 10, 0.5, 0.3, 0.1)
+    rows = np.array([r, law.descantes(r)])
+    assert law.prepare(rows) == law.XI_WIDTH and list(rows[:, law.PLAN]) == [law.PLANS["grains3d"],
+                                                                            law.PLANS["general"]]
     h = law.row(law.parse("model hertz E 1e7 nu 0.3 en 0.5 mu 0.3".split(), "pc"))
     assert (h[law.NORMAL], h[law.DAMPING], h[law.TANGENTIAL]) == (
         law.PARTS["normal"]["hertz"], law.PARTS["damping"]["hertz"], law.PARTS["tangential"]["mindlin"])
     d = law.descantes(r)
     assert d[law.LIMIT] == 1 and d[law.TANGENTIAL] == law.PARTS["tangential"]["viscous"]
-    assert law.history_layout(np.array([d])) == 0 and law.history_layout(np.array([r])) == law.XI_WIDTH
+    assert law.prepare(np.array([d])) == 0 and law.prepare(np.array([r])) == law.XI_WIDTH

@@ -19,15 +19,15 @@ from dem.args import float_error, number
 from dem.errors import DemError, did_you_mean
 
 from . import hertz
-from ._columns import COLUMNS, PARTS
+from ._columns import COLUMNS, PARTS, PLANS
 
 # columns of a coefficient row: defined once, in row.pxd
 (KN, BETA, MU, GAMMA_T, KS, MU_ROLL, EN, BETA_T, NORMAL, YSTAR, GSTAR, DAMPING, TANGENTIAL, LIMIT, ROLLING,
- ETA_ROLL, W, H_ROLL, H_BOND, COHESION, LIQUID, TENSION, ANGLE, NCOEFF, XI_WIDTH, ROLL_WIDTH, BOND_WIDTH) = (
-    COLUMNS[k] for k in (
-        "KN", "BETA", "MU", "GAMMA_T", "KS", "MU_ROLL", "EN", "BETA_T", "NORMAL", "YSTAR", "GSTAR", "DAMPING",
-        "TANGENTIAL", "LIMIT", "ROLLING", "ETA_ROLL", "W", "H_ROLL", "H_BOND", "COHESION", "LIQUID", "TENSION",
-        "ANGLE", "NCOEFF", "XI_WIDTH", "ROLL_WIDTH", "BOND_WIDTH"))
+ ETA_ROLL, W, H_ROLL, H_BOND, COHESION, LIQUID, TENSION, ANGLE, PLAN, NCOEFF, XI_WIDTH, ROLL_WIDTH,
+ BOND_WIDTH) = (COLUMNS[k] for k in (
+    "KN", "BETA", "MU", "GAMMA_T", "KS", "MU_ROLL", "EN", "BETA_T", "NORMAL", "YSTAR", "GSTAR", "DAMPING",
+    "TANGENTIAL", "LIMIT", "ROLLING", "ETA_ROLL", "W", "H_ROLL", "H_BOND", "COHESION", "LIQUID", "TENSION",
+    "ANGLE", "PLAN", "NCOEFF", "XI_WIDTH", "ROLL_WIDTH", "BOND_WIDTH"))
 HERTZ_FAMILY = ("hertz", "jkr", "dmt")
 ADHESIVE = ("jkr", "dmt")
 KEYWORDS = {"kn": "normal stiffness (N/m) of normal hooke",
@@ -275,10 +275,23 @@ def _bonds(rows):
     return (rows[..., NORMAL] == PARTS["normal"]["jkr"]) | (rows[..., COHESION] != PARTS["cohesion"]["none"])
 
 
-def history_layout(rows):
-    """The history width a table of rows needs (0: none) and, in place, each row's offsets: the tangential
-    spring xi first (XI_WIDTH), then the rolling spring (ROLL_WIDTH) and the bond flag, each only when a
-    row of the table has that part. A table of today's models keeps XI_WIDTH or nothing."""
+def _plans(rows):
+    """Each row's plan (row.pxd): the common combinations that law.pxd evaluates with constant parts."""
+    p = {k: PARTS[k] for k in SELECTORS}
+    plain = (rows[..., COHESION] == p["cohesion"]["none"]) & (rows[..., LIMIT] == 0)
+    grains3d = plain & (rows[..., NORMAL] == p["normal"]["hooke"]) & (
+        rows[..., DAMPING] == p["damping"]["restitution"]) & (rows[..., TANGENTIAL] == p["tangential"]["spring"])
+    hertz_mindlin = plain & (rows[..., NORMAL] == p["normal"]["hertz"]) & (
+        rows[..., DAMPING] == p["damping"]["hertz"]) & (rows[..., TANGENTIAL] == p["tangential"]["mindlin"])
+    return np.where(grains3d, PLANS["grains3d"], np.where(hertz_mindlin, PLANS["hertz_mindlin"], PLANS["general"]))
+
+
+def prepare(rows):
+    """Make a table of rows (any array of them) ready for the kernels, in place: each row's plan and
+    history offsets. Returns the history width the table needs (0: none): the tangential spring xi first
+    (XI_WIDTH), then the rolling spring (ROLL_WIDTH) and the bond flag, each only when a row of the table
+    has that part. A table of the seed models keeps XI_WIDTH or nothing."""
+    rows[..., PLAN] = _plans(rows)
     xi, roll, bond = _needs(rows)
     if not (xi or roll or bond):
         return 0
@@ -294,7 +307,7 @@ def history_layout(rows):
 
 
 def needs_history(rows):
-    """Whether coefficient rows need contact history (history_layout's width > 0)."""
+    """Whether coefficient rows need contact history (prepare's width > 0)."""
     return any(_needs(rows))
 
 

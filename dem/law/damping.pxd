@@ -8,19 +8,20 @@ D_RESTITUTION (Grains3D eq. 16): gamma_n = 2 beta sqrt(kn m*), the exact en of a
 D_HERTZ (LIGGGHTS's model hertz, doc/gran_model_hertz.html of CFDEMproject/LIGGGHTS-PUBLIC):
     gamma_n = 2 sqrt(5/6) beta sqrt(3/2 kn m*), nu_t = 2 sqrt(5/6) beta sqrt(kt m*)."""
 from libc.math cimport sqrt
-from dem.law.row cimport C_BETA, C_GAMMA_T, C_BETA_T, C_DAMPING, D_RESTITUTION
+from dem.law.row cimport C_BETA, C_GAMMA_T, C_BETA_T, D_RESTITUTION
 
 
-cdef inline double normal_damping(const double* c, double kn, double meff, double* w) noexcept nogil:
-    """gamma_n; w receives sqrt(kn m*) (the tangential dashpot of D_RESTITUTION reuses it)."""
+cdef inline double normal_damping(int part, const double* c, double kn, double meff, double* w) noexcept nogil:
+    """gamma_n of the damping part `part`; w receives sqrt(kn m*) (the tangential dashpot of D_RESTITUTION
+    reuses it)."""
     w[0] = sqrt(kn * meff)
-    if <int>c[C_DAMPING] == D_RESTITUTION:
+    if part == D_RESTITUTION:
         return 2.0 * c[C_BETA] * w[0]
     return 2.0 * sqrt(5.0 / 6.0) * c[C_BETA] * sqrt(1.5 * kn * meff)
 
 
-cdef inline double tangential_damping(const double* c, double w, double kt, double meff) noexcept nogil:
-    """nu_t, with w = sqrt(kn m*) from normal_damping."""
-    if <int>c[C_DAMPING] == D_RESTITUTION:
+cdef inline double tangential_damping(int part, const double* c, double w, double kt, double meff) noexcept nogil:
+    """nu_t of the damping part `part`, with w = sqrt(kn m*) from normal_damping."""
+    if part == D_RESTITUTION:
         return 2.0 * c[C_GAMMA_T] * meff + 2.0 * c[C_BETA_T] * w
     return 2.0 * sqrt(5.0 / 6.0) * c[C_BETA] * sqrt(kt * meff)

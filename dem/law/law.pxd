@@ -14,52 +14,17 @@ Descantes 2022 eq. 3 is Hooke + restitution damping that never attracts (C_LIMIT
 (XI_WIDTH values), the rolling spring and the bond flag at the row's offsets. With `advance` false (setup
 passes) history is read but never changed. Returns the elastic energy; R receives what the rolling part
 needs."""
-from dem.law.row cimport C_LIMIT, C_H_BOND, C_NORMAL, C_COHESION, N_JKR, K_NONE, XI_WIDTH
-from dem.law.normal cimport Normal, normal_force, jkr_reach
-from dem.law.damping cimport normal_damping
-from dem.law.tangential cimport tangential_force
-from dem.law.cohesion cimport cohesion_force, cohesion_reach
-
-
-cdef struct ForRolling:
-    double kn              # the normal stiffness (EPSD's k_r scales with it)
-    double load            # |F_n + shift|: the normal load of the Coulomb caps (EPSD's plastic limit)
+from dem.law.row cimport C_H_BOND, C_NORMAL, C_COHESION, N_JKR, K_NONE, XI_WIDTH
+from dem.law.normal cimport jkr_reach
+from dem.law.cohesion cimport cohesion_reach
+from dem.law.compose cimport ForRolling, compose
 
 
 cdef inline double evaluate(const double* c, double delta, const double* n, const double* vr, double meff,
                             double reff, double* h, double dt, bint advance, double* fn, double* ft,
                             ForRolling* R) noexcept nogil:
-    cdef Normal N
-    cdef double vt[3]
-    cdef double vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2]
-    cdef double w, fnmag
-    cdef int d
-    # apart only a bridge acts, and JKR within its pull-off distance (a bridge may reach further)
-    cdef bint apart = delta < 0.0 and (<int>c[C_NORMAL] != N_JKR or delta <= -jkr_reach(c, reff))
-    if apart:
-        N.f = N.k = N.a = N.shift = N.energy = 0.0
-    else:
-        normal_force(c, delta, reff, &N)
-    if <int>c[C_COHESION] != K_NONE:
-        cohesion_force(c, delta, reff, &N)
-    fnmag = N.f - normal_damping(c, N.k, meff, &w) * vn
-    if c[C_LIMIT] != 0.0 and fnmag < 0.0:
-        fnmag = 0.0
-    for d in range(3):
-        fn[d] = fnmag * n[d]
-        vt[d] = vr[d] - vn * n[d]
-    if apart:              # no friction without contact; the tangential spring starts again at touch
-        ft[0] = ft[1] = ft[2] = 0.0
-        if advance and h != NULL:
-            for d in range(XI_WIDTH):
-                h[d] = 0.0
-    else:
-        tangential_force(c, w, N.a, fnmag + N.shift, meff, n, vt, h, dt, advance, ft)
-    if advance and h != NULL and c[C_H_BOND] >= 0.0:
-        h[<int>c[C_H_BOND]] = 1.0          # the bond holds (beyond contact too) until its reach
-    R.kn = N.k
-    R.load = fnmag + N.shift if fnmag + N.shift > 0.0 else -(fnmag + N.shift)
-    return N.energy
+    """The row's law at one contact (module docstring; compose.pxd)."""
+    return compose(c, delta, n, vr, meff, reff, h, dt, advance, fn, ft, R)
 
 
 cdef inline double reach(const double* c, double reff) noexcept nogil:
@@ -76,9 +41,19 @@ cdef inline bint bonded(const double* c, const double* h) noexcept nogil:
     return h != NULL and c[C_H_BOND] >= 0.0 and h[<int>c[C_H_BOND]] != 0.0
 
 
+cdef inline bint holds(const double* c, const double* h, double gap, double reff) noexcept nogil:
+    """Whether a contact apart by gap (> 0) still acts: bonded, and within its reach."""
+    return bonded(c, h) and gap < reach(c, reff)
+
+
 cdef inline void forget(double* h, int width) noexcept nogil:
     """A contact that ended forgets its history (written only when set: saves bandwidth)."""
     cdef int d
-    for d in range(width):
-        if h[d] != 0.0:
-            h[d] = 0.0
+    if h[0] != 0.0 or h[1] != 0.0 or h[2] != 0.0:     # the tangential spring, first of every record
+        h[0] = 0.0
+        h[1] = 0.0
+        h[2] = 0.0
+    if width > XI_WIDTH:
+        for d in range(XI_WIDTH, width):
+            if h[d] != 0.0:
+                h[d] = 0.0

@@ -5,7 +5,7 @@ the stiffness the damping and the rolling spring scale with, the shift of the Co
 pull-off force: friction vanishes where the contact would let go, as in Thornton's JKR friction) and the
 elastic energy (the work to bring the pair from apart to delta)."""
 from libc.math cimport sqrt, cbrt, fabs, M_PI
-from dem.law.row cimport C_KN, C_YSTAR, C_W, C_NORMAL, N_HOOKE, N_HERTZ, N_JKR, N_DMT
+from dem.law.row cimport C_KN, C_YSTAR, C_W, N_HOOKE, N_HERTZ, N_JKR, N_DMT
 
 
 cdef struct Normal:
@@ -93,8 +93,8 @@ cdef inline void dmt(const double* c, double delta, double reff, Normal* N) noex
     N.energy -= fa * delta
 
 
-cdef inline void normal_force(const double* c, double delta, double reff, Normal* N) noexcept nogil:
-    cdef int part = <int>c[C_NORMAL]
+cdef inline void normal_force(int part, const double* c, double delta, double reff, Normal* N) noexcept nogil:
+    """The normal part `part` (the row's c[C_NORMAL], or a constant where law.pxd specialises)."""
     if part == N_HOOKE:
         hooke(c, delta, N)
     elif part == N_HERTZ:

@@ -8,8 +8,8 @@ import numpy as np
 from dem.args import parse_types
 from dem.errors import DemError
 
-from . import (ADHESIVE, NCOEFF, XI_WIDTH, check_speed, descantes, frictionless, has_material, history_layout,
-               is_hertz_row, max_reach, mix_materials, parse, row, row_contact_time, warn_frictionless)
+from . import (ADHESIVE, NCOEFF, XI_WIDTH, check_speed, descantes, frictionless, has_material, is_hertz_row,
+               max_reach, mix_materials, parse, prepare, row, row_contact_time, warn_frictionless)
 
 
 class PairCoefficients:
@@ -17,7 +17,7 @@ class PairCoefficients:
     `check_coefficients`, `self.history_width` the values of history each contact keeps (0: none)."""
 
     coeff_usage = "pair_coeff I J kn KN en EN [mu ..] [gamma_t ..] [beta_t ..] [ks ..] [mu_roll ..]"
-    # the history this style's kernel can keep per contact (None: any layout of history_layout)
+    # the history this style's kernel can keep per contact (None: any layout of prepare)
     max_history = XI_WIDTH
 
     def init_coefficients(self):
@@ -73,7 +73,7 @@ class PairCoefficients:
             raise DemError(f"pair_coeff missing for types {a} {b}")
         self._mix()
         self.table[:] = descantes(self.rows) if getattr(self, "law", "grains3d") == "descantes" else self.rows
-        self.history_width = history_layout(self.table[1:, 1:])
+        self.history_width = prepare(self.table[1:, 1:])
         if self.max_history is not None and self.history_width > self.max_history:
             raise DemError(f"pair_style {self.style}: normal jkr, cohesion capillary and rolling epsd/epsd2 keep "
                            f"history this pair style has no room for yet", hint="pair_style sphere has them")

@@ -28,7 +28,8 @@ cdef enum:                 # columns of a coefficient row
     C_LIQUID = 20          # capillary: liquid volume of the bridge (m^3)
     C_TENSION = 21         # capillary: surface tension of the liquid (N/m)
     C_ANGLE = 22           # capillary: contact angle (radians)
-    NCOEFF = 23
+    C_PLAN = 23            # P_GRAINS3D, P_HERTZ_MINDLIN: a common combination (compose.pxd skips what it lacks)
+    NCOEFF = 24
 
 cdef enum:                 # normal parts (c[C_NORMAL])
     N_HOOKE = 0            # kn delta
@@ -53,6 +54,11 @@ cdef enum:                 # rolling parts (c[C_ROLLING])
 cdef enum:                 # cohesion parts (c[C_COHESION]): forces added to the normal part's
     K_NONE = 0
     K_CAPILLARY = 1        # a liquid bridge (Willett et al. 2000), from touch to its rupture distance
+
+cdef enum:                 # plans (c[C_PLAN], set by dem.law.prepare)
+    P_GENERAL = 0          # any parts: cohesion, the damping limit, forces apart and the bond are checked
+    P_GRAINS3D = 1         # hooke + restitution + spring, no cohesion, no limit
+    P_HERTZ_MINDLIN = 2    # hertz + hertz damping + mindlin, no cohesion, no limit
 
 cdef enum:
     XI_WIDTH = 3           # values of the tangential spring history xi (first in a contact's history)

@@ -9,7 +9,7 @@ T_SPRING, T_MINDLIN: -min(mu |load|, |-nu_t vt - kt xi|) along the trial force, 
     the dashpot alone, capped.
 T_VISCOUS (Descantes 2022 eq. 3): -min(nu_t |vt|, mu |load|) vt / |vt|, no history."""
 from libc.math cimport sqrt
-from dem.law.row cimport C_MU, C_KS, C_GSTAR, C_TANGENTIAL, T_SPRING, T_VISCOUS
+from dem.law.row cimport C_MU, C_KS, C_GSTAR, T_SPRING, T_VISCOUS
 from dem.law.damping cimport tangential_damping
 
 
@@ -60,17 +60,18 @@ cdef inline void viscous(double nu_t, double cap, const double* vt, double* ft) 
         ft[d] = -scale * vt[d]
 
 
-cdef inline void tangential_force(const double* c, double w, double a, double load, double meff,
-                                  const double* n, const double* vt, double* xi, double dt, bint advance,
-                                  double* ft) noexcept nogil:
-    """ft of the row's tangential part; w = sqrt(kn m*) (damping.pxd), a the contact radius."""
-    cdef int part = <int>c[C_TANGENTIAL]
+cdef inline void tangential_force(int part, int damping, const double* c, double w, double a, double load,
+                                  double meff, const double* n, const double* vt, double* xi, double dt,
+                                  bint advance, double* ft) noexcept nogil:
+    """ft of the tangential part `part` with the damping part `damping`; w = sqrt(kn m*) (damping.pxd), a
+    the contact radius."""
     cdef double kt
-    _zero(ft)
     if c[C_MU] == 0.0:
+        _zero(ft)
         return
     if part == T_VISCOUS:
-        viscous(tangential_damping(c, w, 0.0, meff), c[C_MU] * (load if load > 0.0 else -load), vt, ft)
+        _zero(ft)
+        viscous(tangential_damping(damping, c, w, 0.0, meff), c[C_MU] * (load if load > 0.0 else -load), vt, ft)
         return
     kt = c[C_KS] if part == T_SPRING else 8.0 * c[C_GSTAR] * a
-    spring(c, kt, tangential_damping(c, w, kt, meff), load, n, vt, xi, dt, advance, ft)
+    spring(c, kt, tangential_damping(damping, c, w, kt, meff), load, n, vt, xi, dt, advance, ft)

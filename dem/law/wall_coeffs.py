@@ -11,7 +11,7 @@ import numpy as np
 from dem.args import parse_types
 from dem.errors import DemError
 
-from . import (NCOEFF, XI_WIDTH, check_speed, descantes, frictionless, history_layout, is_hertz_row, parse,
+from . import (H_BOND, NCOEFF, XI_WIDTH, check_speed, descantes, frictionless, is_hertz_row, parse, prepare,
                row, row_contact_time, warn_frictionless)
 
 
@@ -70,12 +70,13 @@ class WallCoefficients:
         self.check_hertz()
         if self.contact_law == "descantes":      # Descantes' law has no spring: no history
             self.table[:] = descantes(self.table)
-        self.law_width = history_layout(self.table[:, 1:])
+        self.law_width = prepare(self.table[:, 1:])
         if self.max_history is not None and self.law_width > self.max_history:
             raise DemError(f"{self._where()}fix {self.id} {self.style}: normal jkr, cohesion capillary and rolling "
                            f"epsd/epsd2 keep history this wall has no room for yet",
                            hint="fix wall/plane and wall/drum have them")
         self.use_history = self.law_width > 0
+        self.bonds = bool(np.any(self.table[:, 1:, H_BOND] >= 0))     # a row acts beyond contact
         if self.use_history:
             sim.atom.add_field(self.history_name, (self.history_width(nwalls),), np.float64, 0.0)
 

@@ -7,7 +7,7 @@ from libc.math cimport sqrt
 from dem._particles cimport ParticleView, Particles, count_contact
 from dem.contact.record cimport Contact
 from dem.law.apply cimport Body, apply_pair, bind_body
-from dem.law.law cimport forget, bonded, reach
+from dem.law.law cimport forget, holds
 from dem.law.row cimport C_ETA_ROLL
 
 ctypedef cnp.int64_t i64
@@ -16,9 +16,11 @@ cdef double ROLL_INERTIA = 1.4         # I + m r^2 of a solid sphere about a poi
 
 
 def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, const double[:, :, ::1] coeff,
-            double[:, ::1] hist, bint use_history, double dt, bint advance, double[::1] stats, i64[::1] worst):
+            double[:, ::1] hist, bint use_history, bint bonds, double dt, bint advance, double[::1] stats,
+            i64[::1] worst):
     """Adds contact forces and torques to f and torque (owned and ghost rows). hist: each listed pair's
-    history (the law's width). stats receives [contacts, max overlap / smaller diameter, elastic energy];
+    history (the law's width); bonds: whether a row of the table acts beyond contact once touched (the
+    pairs apart are then asked). stats receives [contacts, max overlap / smaller diameter, elastic energy];
     worst the (i, j) of the largest overlap."""
     cdef Particles particles = view.p          # local copies: no call can change them (kept in registers)
     cdef const Particles* P = &particles
@@ -26,7 +28,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
     cdef int width = hist.shape[1]
     cdef double dx[3]
     cdef double out[6]
-    cdef double r2, r, rinv, rsum, meff, reff, energy = 0.0, ov, maxov = 0.0, gap
+    cdef double r2, r, rinv, rsum, meff, reff, energy = 0.0, ov, maxov = 0.0
     cdef double* h = NULL
     cdef const double* cf
     cdef Contact con
@@ -45,20 +47,15 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 dx[2] = P.x[3 * i + 2] - P.x[3 * j + 2]
                 r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]
                 rsum = P.radius[i] + P.radius[j]
-                cf = &coeff[P.type[i], P.type[j], 0]
-                if use_history:
-                    h = &hist[k, 0]
                 if r2 >= rsum * rsum:
                     # apart: a bonded pair holds until its reach, any other forgets its history
-                    if not bonded(cf, h):
+                    if not (bonds and holds(&coeff[P.type[i], P.type[j], 0], &hist[k, 0],
+                                                     sqrt(r2) - rsum, P.radius[i] * P.radius[j] / rsum)):
                         if use_history and advance:
-                            forget(h, width)
+                            forget(&hist[k, 0], width)
                         continue
-                    gap = sqrt(r2) - rsum
-                    if gap >= reach(cf, P.radius[i] * P.radius[j] / rsum):
-                        if advance:
-                            forget(h, width)
-                        continue
+                cf = &coeff[P.type[i], P.type[j], 0]
+                h = &hist[k, 0] if use_history else NULL
                 r = sqrt(r2)
                 rinv = 1.0 / r
                 for d in range(3):

@@ -65,7 +65,7 @@ class PairSphere(PairCoefficients, Pair):
 
 
     style = "sphere"
-    max_history = None               # any layout of the law's history (dem.law.history_layout)
+    max_history = None               # any layout of the law's history (dem.law.prepare)
     tallies = ("stress", "count")    # per-particle contact tallies for analysis (dem/tally.py)
 
     def __init__(self, sim, args):
@@ -101,7 +101,7 @@ class PairSphere(PairCoefficients, Pair):
         h = self.history
         xi = h.values if h is not None else np.zeros((1, XI_WIDTH))
         _pair_sphere.compute(ParticleView(sim.atom), nb.offsets, nb.neigh, self.table, xi, h is not None,
-                             sim.update.dt, advance, self.stats, self.worst)
+                             self.reach > 0, sim.update.dt, advance, self.stats, self.worst)
         self.ncontacts = int(self.stats[0])
         self.max_overlap = float(self.stats[1])
         self.energy = float(self.stats[2])

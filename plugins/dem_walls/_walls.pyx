@@ -21,7 +21,7 @@ from dem.shapes._support cimport ShapeRef, BOX, POLYHEDRON, MARGIN
 from dem.shapes._table cimport (ShapeView, TableView, body_ref, equivalent_radius, pose_body, round_body, ncomponents,
                                 component_row, pose_component)
 from dem.law.apply cimport Body, apply_wall, bind_body, contact_radius
-from dem.law.law cimport forget, bonded, reach
+from dem.law.law cimport forget, holds
 from dem.law.row cimport C_ETA_ROLL
 
 ctypedef cnp.int64_t i64
@@ -94,11 +94,11 @@ cdef inline int _vertices_beyond(const ShapeRef* S, const double* R, const doubl
 
 
 def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const double[:, :, ::1] coeff,
-          ShapeView shapes, double[:, ::1] xi, int hw, bint use_history, double dt, bint advance, int point,
-          bint average, double[::1] stats):
+          ShapeView shapes, double[:, ::1] xi, int hw, bint use_history, bint bonds, double dt, bint advance,
+          int point, bint average, double[::1] stats):
     """surfaces: rows of S_NCOL values (SURFACE). coeff[w, type]: the law row of surface w. xi: hw history
     values (the law's width) per surface and piece per particle (piece c of surface w at hw (c nw + w);
-    pieces beyond the array's width keep no history). point: 0 the deepest point, 1 the centroid of the candidate
+    pieces beyond the array's width keep no history); bonds: whether a row acts beyond contact once touched. point: 0 the deepest point, 1 the centroid of the candidate
     points beyond the surface, 2 multipoint: a polytope (box, polyhedron) touches at every vertex beyond
     the surface, each with the deepest overlap and a weight 1/alpha, alpha the particle's points against
     that surface (Descantes 2022 eq. 3; no tangential spring: the points are not tracked). average: Model B
@@ -148,7 +148,6 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
     cdef Body A, B
     cdef bint posed, sphere
     cdef const double* cf
-    cdef double* hs
     for w in range(nw):
         load_surface(&surfaces[w, 0], &surf[w])
     con.key = 0
@@ -165,13 +164,11 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
             posed = False
             for w in range(nw):
                 W = &surf[w]
-                cf = &coeff[w, P.type[i], 0]
                 gap = bound_gap(W, x, &rho)
-                hs = &xi[i, hw * w] if hpieces > 0 else NULL
                 # apart: a bonded sphere holds until its reach (R* = R_i), any other contact forgets
-                if (gap >= P.radius[i] and not (sphere and bonded(cf, hs) and gap - P.radius[i] <
-                                                reach(cf, equivalent_radius(T, s, P.radius[i])))) or (
-                        sphere and not sphere_normal(W, x, rho, con.n)):
+                if (gap >= P.radius[i] and not (bonds and sphere and holds(
+                        &coeff[w, P.type[i], 0], &xi[i, hw * w] if hpieces > 0 else NULL, gap - P.radius[i],
+                        equivalent_radius(T, s, P.radius[i])))) or (sphere and not sphere_normal(W, x, rho, con.n)):
                     if use_history and advance:
                         for c in range(hpieces):
                             forget(&xi[i, hw * (c * nw + w)], hw)
@@ -244,6 +241,7 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
                     B.s = NULL
                     bind_body(&A, P, i)
                     A.x = x
+                    cf = &coeff[w, P.type[i], 0]
                     # the rolling inertia about the contact, I + m r^2 (the EPSD dashpot: spheres only)
                     con.inertia = ROLL_INERTIA * P.rmass[i] * P.radius[i] * P.radius[i] if (
                         sphere and cf[C_ETA_ROLL] > 0.0) else 0.0

@@ -74,7 +74,7 @@ class WallFix(WallCoefficients):
     shaped particles; `self.contact_law` (one of LAWS, default grains3d) the law at every contact point:
     `descantes` is Descantes' eq. 3 of the shared law (dem.law.descantes; no spring, no history)."""
     point = 0
-    max_history = None           # the kernel keeps any history layout (dem.law.history_layout)
+    max_history = None           # the kernel keeps any history layout (dem.law.prepare)
 
     def init_walls(self, nwalls):
         self.init_table(nwalls)
@@ -86,8 +86,8 @@ class WallFix(WallCoefficients):
     def compute(self, advance):
         sim = self.sim
         _walls.walls(ParticleView(sim.atom), int(self.groupbit), self.surfaces(), self.table, self.shape_view,
-                     self.history(), self.law_width, self.use_history, sim.update.dt, advance, self.point,
-                     bool(getattr(sim.pair, "multipoint_average", True)), self.stats)
+                     self.history(), self.law_width, self.use_history, self.bonds, sim.update.dt, advance,
+                     self.point, bool(getattr(sim.pair, "multipoint_average", True)), self.stats)
         self.ncontacts = int(self.stats[STAT["CONTACTS"]])
         self.max_overlap = float(self.stats[STAT["MAXOV"]])
         self.energy = float(self.stats[STAT["ENERGY"]])
