@@ -19,8 +19,9 @@ import statistics
 import subprocess
 import sys
 
+from law_bitwise import SPHERE_BED, SPHERE_DATA as DATA
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-DATA = os.path.join(HERE, "..", "..", "shared", "bench", "sphere-bed", "bed_8000.data")
 LAWS = {
     "hooke": "kn 1000 en 0.5 mu 0.5 gamma_t 4210.85 ks 285.714",
     "hertz": "model hertz E 5e6 nu 0.3 en 0.5 mu 0.5",
@@ -37,20 +38,7 @@ def worker(law, steps):
 
     import dem
     sim = dem.Simulation(screen=False)
-    sim.commands(f"""
-units si
-boundary f f fm
-read_data {DATA}
-pair_style sphere
-pair_coeff * * {LAWS[law]}
-fix 1 all nve/sphere
-fix 2 all gravity 9.81 vector 0 0 -1
-fix walls all wall/plane xplane 0 $(xhi) yplane 0 $(yhi) zplane 0 NULL
-neighbor 0.0001 bin
-timestep 1.646e-6
-thermo 0
-run 0
-""")
+    sim.commands(SPHERE_BED.format(law=LAWS[law]) + "run 0\n")
     t, wall = time.process_time(), time.perf_counter()
     sim.run(steps)
     cpu, wall = time.process_time() - t, time.perf_counter() - wall

@@ -75,6 +75,23 @@ thermo 0
     return sim
 
 
+def on_a_wall(law, radius):
+    """A sphere touching a floor of the law `law` (no integrator: it stays where it is put)."""
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+boundary f f f
+region box block {-10 * radius} {10 * radius} {-10 * radius} {10 * radius} 0 {20 * radius}
+create_box 1 box
+create_atoms 1 single 0 0 {radius!r} radius {radius} density {RHO}
+pair_style sphere
+pair_coeff * * kn 1 en 1
+fix w all wall/plane zplane 0 NULL {law}
+timestep 1e-9
+thermo 0
+""")
+    return sim, sim.modify.find("w")
+
+
 def force_at(sim, delta, radius=R):
     """Place the pair at overlap delta (at rest) and return the x force on the particle at +x, and the
     contacts, after one step (no integrator: the particles stay where they are put)."""
@@ -164,19 +181,7 @@ def test_dmt_pull_off_and_force():
 def test_jkr_on_a_wall_holds_until_its_pull_off_distance():
     """A sphere on a JKR wall (R* = R): the same branch with R* = R, held beyond touch until delta_c."""
     dc = -0.75 * (math.pi ** 2 * W ** 2 * R / YSTAR ** 2) ** (1.0 / 3.0)
-    sim = dem.Simulation(screen=False)
-    sim.commands(f"""
-boundary f f f
-region box block -0.001 0.001 -0.001 0.001 0 0.002
-create_box 1 box
-create_atoms 1 single 0 0 {R!r} radius {R} density {RHO}
-pair_style sphere
-pair_coeff * * kn 1 en 1
-fix w all wall/plane zplane 0 NULL {JKR}
-timestep 1e-9
-thermo 0
-""")
-    wall = sim.modify.find("w")
+    sim, wall = on_a_wall(JKR, R)
     p = R * math.sqrt(2 * math.pi * W / YSTAR)
 
     def at(delta):
@@ -228,19 +233,7 @@ def test_capillary_bridge_force_and_rupture_on_a_pair():
 def test_capillary_bridge_on_a_wall():
     """Sphere and plane: Willett's R is 2 R_i (4 pi R gamma cos(theta) at touch), S^ = S sqrt(2 R_i / V)."""
     sc = (1 + 0.5 * math.radians(THETA)) * VB ** (1.0 / 3.0)
-    sim = dem.Simulation(screen=False)
-    sim.commands(f"""
-boundary f f f
-region box block -0.01 0.01 -0.01 0.01 0 0.02
-create_box 1 box
-create_atoms 1 single 0 0 {RB!r} radius {RB} density {RHO}
-pair_style sphere
-pair_coeff * * kn 1 en 1
-fix w all wall/plane zplane 0 NULL {BRIDGE}
-timestep 1e-9
-thermo 0
-""")
-    wall = sim.modify.find("w")
+    sim, wall = on_a_wall(BRIDGE, RB)
 
     def at(gap):
         sim.atom.local("x")[0, 2] = RB + gap

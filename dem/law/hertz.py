@@ -9,8 +9,6 @@ one material (both bodies of a line that gives E and nu, and a wall of that line
 G* = G / (2 (2 - nu))."""
 import math
 
-import numpy as np
-
 from dem.errors import DemError
 
 # 2 times the integral of dx / sqrt(1 - x^(5/2)) over [0, 1]: an elastic Hertz impact lasts this times
