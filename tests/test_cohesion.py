@@ -246,3 +246,17 @@ def test_capillary_bridge_on_a_wall():
         fz, n = at(s)
         assert n == 1 and abs(fz / -willett(s, 2 * RB) - 1) < 1e-9, (s, fz)
     assert at(1.01 * sc) == (0.0, 0)
+
+
+def test_sjkr_pulls_with_the_contact_area_in_contact_only():
+    """cohesion sjkr: Hertz minus k A, A = 2 pi R* delta (the crossing circle of the two surfaces to first
+    order: pi (R delta - delta^2/4) for equal spheres of radius R = 2 R*); nothing apart. Tolerance 1e-9."""
+    k = 2e5
+    sim = pair(f"model hertz E {E} nu {NU} en 1 mu 0 cohesion sjkr cohesion_energy_density {k}")
+    for delta in (1e-6 * RS, 1e-3 * RS, 1e-2 * RS):
+        fx, n = force_at(sim, delta)
+        expected = 4.0 / 3.0 * YSTAR * math.sqrt(RS) * delta ** 1.5 - k * 2 * math.pi * RS * delta
+        assert n == 1 and abs(fx / expected - 1) < 1e-9, (delta, fx, expected)
+        exact = math.pi * (R * delta - delta ** 2 / 4)         # the exact crossing circle: first order agrees
+        assert abs(2 * math.pi * RS * delta / exact - 1) < delta / R
+    assert force_at(sim, -1e-6 * RS) == (0.0, 0)

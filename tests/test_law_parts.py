@@ -159,8 +159,13 @@ BAD = [
     ("pair_coeff * * kn 1e5 en 0.5 cohesion capillary liquid_volume 1e-11 contact_angle 20\n",
      "cohesion capillary needs surface_tension"),
     ("pair_coeff * * kn 1e5 en 0.5 cohesion capilary liquid_volume 1e-11\n",
-     "cohesion must be one of none, capillary, got 'capilary' (did you mean 'capillary'"),
+     "cohesion must be one of none, capillary, sjkr, got 'capilary' (did you mean 'capillary'"),
     ("pair_coeff * * kn 1e5 en 0.5 liquid_volume 1e-11\n", "'liquid_volume' is a coefficient of cohesion capillary"),
+    ("pair_coeff * * kn 1e5 en 0.5 cohesion sjkr\n", "cohesion sjkr needs cohesion_energy_density"),
+    ("pair_coeff * * kn 1e5 en 0.5 cohesion sjkr cohesion_energy_density -1\n",
+     "cohesion_energy_density must be > 0"),
+    ("pair_coeff * * kn 1e5 en 0.5 cohesion sjkr cohesion_energy_density inf\n",
+     "cohesion_energy_density must be a finite number"),
 ]
 BAD_AT_RUN = [
     # the line that leaves its material to types that have none

@@ -23,11 +23,11 @@ from ._columns import COLUMNS, PARTS, PLANS
 
 # columns of a coefficient row: defined once, in row.pxd
 (KN, BETA, MU, GAMMA_T, KS, MU_ROLL, EN, BETA_T, NORMAL, YSTAR, GSTAR, DAMPING, TANGENTIAL, LIMIT, ROLLING,
- ETA_ROLL, W, H_ROLL, H_BOND, COHESION, LIQUID, TENSION, ANGLE, PLAN, NCOEFF, XI_WIDTH, ROLL_WIDTH,
- BOND_WIDTH) = (COLUMNS[k] for k in (
+ ETA_ROLL, W, H_ROLL, H_BOND, COHESION, LIQUID, TENSION, ANGLE, PLAN, COHESION_K, NCOEFF, XI_WIDTH,
+ ROLL_WIDTH, BOND_WIDTH) = (COLUMNS[k] for k in (
     "KN", "BETA", "MU", "GAMMA_T", "KS", "MU_ROLL", "EN", "BETA_T", "NORMAL", "YSTAR", "GSTAR", "DAMPING",
     "TANGENTIAL", "LIMIT", "ROLLING", "ETA_ROLL", "W", "H_ROLL", "H_BOND", "COHESION", "LIQUID", "TENSION",
-    "ANGLE", "PLAN", "NCOEFF", "XI_WIDTH", "ROLL_WIDTH", "BOND_WIDTH"))
+    "ANGLE", "PLAN", "COHESION_K", "NCOEFF", "XI_WIDTH", "ROLL_WIDTH", "BOND_WIDTH"))
 HERTZ_FAMILY = ("hertz", "jkr", "dmt")
 ADHESIVE = ("jkr", "dmt")
 KEYWORDS = {"kn": "normal stiffness (N/m) of normal hooke",
@@ -42,7 +42,8 @@ KEYWORDS = {"kn": "normal stiffness (N/m) of normal hooke",
             "eta_roll": "rolling damping of rolling epsd, a fraction of critical (0 <= eta_roll)",
             "liquid_volume": "volume of a liquid bridge (m^3), > 0",
             "surface_tension": "surface tension of the liquid (N/m), > 0",
-            "contact_angle": "contact angle of the liquid on the solid (degrees, 0 <= angle < 90)"}
+            "contact_angle": "contact angle of the liquid on the solid (degrees, 0 <= angle < 90)",
+            "cohesion_energy_density": "cohesion sjkr's pull per unit contact area and overlap (J/m^3), > 0"}
 SELECTORS = ("normal", "damping", "tangential", "rolling", "cohesion")
 # the numbers each part takes: the part's own coefficients and which of them a line must give
 PART_WORDS = {("normal", "hooke"): ("kn",), ("normal", "hertz"): ("E", "nu"), ("normal", "jkr"): ("E", "nu", "w"),
@@ -52,10 +53,12 @@ PART_WORDS = {("normal", "hooke"): ("kn",), ("normal", "hertz"): ("E", "nu"), ("
               ("tangential", "viscous"): ("mu",),
               ("rolling", "constant"): ("mu_roll",), ("rolling", "epsd"): ("mu_roll", "eta_roll"),
               ("rolling", "epsd2"): ("mu_roll",), ("cohesion", "none"): (),
-              ("cohesion", "capillary"): ("liquid_volume", "surface_tension", "contact_angle")}
+              ("cohesion", "capillary"): ("liquid_volume", "surface_tension", "contact_angle"),
+              ("cohesion", "sjkr"): ("cohesion_energy_density",)}
 REQUIRED = {"hooke": ("kn", "en"), "hertz": ("E", "nu", "en", "mu"), "jkr": ("E", "nu", "w", "en", "mu"),
             "dmt": ("E", "nu", "w", "en", "mu"), "epsd": ("mu_roll", "eta_roll"), "epsd2": ("mu_roll",),
-            "capillary": ("liquid_volume", "surface_tension", "contact_angle")}
+            "capillary": ("liquid_volume", "surface_tension", "contact_angle"),
+            "sjkr": ("cohesion_energy_density",)}
 WORDS = ("model",) + SELECTORS + tuple(KEYWORDS)      # every word of a law line (for the fixes' parsers)
 MATERIAL = ("E", "nu", "w")      # of each type: a line for types I != J may leave them to pair_coeff I I
 DEFAULT_PARTS = {"hooke": {"damping": "restitution", "tangential": "spring"},
@@ -165,7 +168,7 @@ def check(c, what):
         raise DemError(f"{what}: nu (Poisson's ratio) must be in (-1, 0.5], got {c['nu']:g}")
     if "w" in c and not c["w"] > 0:
         raise DemError(f"{what}: w (work of adhesion) must be > 0, got {c['w']:g}")
-    for k in ("liquid_volume", "surface_tension"):
+    for k in ("liquid_volume", "surface_tension", "cohesion_energy_density"):
         if k in c and not c[k] > 0:
             raise DemError(f"{what}: {k} must be > 0, got {c[k]:g}")
     if "contact_angle" in c and not 0 <= c["contact_angle"] < 90:
@@ -235,6 +238,7 @@ def row(c):
     r[W] = c.get("w", 0.0)
     r[LIQUID], r[TENSION] = c.get("liquid_volume", 0.0), c.get("surface_tension", 0.0)
     r[ANGLE] = math.radians(c.get("contact_angle", 0.0))
+    r[COHESION_K] = c.get("cohesion_energy_density", 0.0)
     r[H_ROLL] = r[H_BOND] = -1.0
     if c.get("normal", "hooke") == "hooke":
         r[KN] = c["kn"]
@@ -272,7 +276,7 @@ def _needs(rows):
 
 def _bonds(rows):
     """Which rows act beyond contact once touched (JKR, a liquid bridge): they keep the bond flag."""
-    return (rows[..., NORMAL] == PARTS["normal"]["jkr"]) | (rows[..., COHESION] != PARTS["cohesion"]["none"])
+    return (rows[..., NORMAL] == PARTS["normal"]["jkr"]) | (rows[..., COHESION] == PARTS["cohesion"]["capillary"])
 
 
 def _plans(rows):

@@ -9,9 +9,14 @@ separation S (0 while they touch),
 with R = 2 R* (the sphere radius for two equal spheres, Derjaguin's harmonic mean for two sizes, 2 R_i
 against a wall: 4 pi R_i gamma cos(theta) at touch). The bridge forms when the bodies touch and breaks at
 S_c = (1 + theta / 2) V^(1/3) (Lian, Thornton & Adams, J. Colloid Interface Sci. 161 (1993) 138). The
-force pulls the bodies together; the Coulomb load is the contact's compression without it (the shift)."""
+force pulls the bodies together; the Coulomb load is the contact's compression without it (the shift).
+
+K_SJKR, the simplified JKR of LIGGGHTS (`cohesion sjkr`): a pull k A while the bodies touch, k the cohesion
+energy density (J/m^3) and A = 2 pi R* delta the area of the circle where the two spheres' surfaces cross,
+to first order in delta (pi (R delta - delta^2 / 4) for two equal spheres of radius R, pi (2 R delta -
+delta^2) for a sphere on a plane); nothing apart."""
 from libc.math cimport sqrt, cbrt, cos, atan, M_PI
-from dem.law.row cimport C_COHESION, C_LIQUID, C_TENSION, C_ANGLE, K_CAPILLARY
+from dem.law.row cimport C_COHESION, C_LIQUID, C_TENSION, C_ANGLE, C_COHESION_K, K_CAPILLARY, K_SJKR
 from dem.law.normal cimport Normal
 
 
@@ -41,9 +46,23 @@ cdef inline void capillary(const double* c, double delta, double reff, Normal* N
         N.energy -= f0 * delta
 
 
+cdef inline void sjkr(const double* c, double delta, double reff, Normal* N) noexcept nogil:
+    """Adds k A (module docstring) to N while in contact, and its energy -pi R* k delta^2."""
+    cdef double f
+    if delta <= 0.0:
+        return
+    f = c[C_COHESION_K] * 2.0 * M_PI * reff * delta
+    N.f -= f
+    N.shift += f
+    N.energy -= 0.5 * f * delta
+
+
 cdef inline void cohesion_force(const double* c, double delta, double reff, Normal* N) noexcept nogil:
-    if <int>c[C_COHESION] == K_CAPILLARY:
+    cdef int part = <int>c[C_COHESION]
+    if part == K_CAPILLARY:
         capillary(c, delta, reff, N)
+    elif part == K_SJKR:
+        sjkr(c, delta, reff, N)
 
 
 cdef inline double cohesion_reach(const double* c) noexcept nogil:

@@ -29,7 +29,8 @@ cdef enum:                 # columns of a coefficient row
     C_TENSION = 21         # capillary: surface tension of the liquid (N/m)
     C_ANGLE = 22           # capillary: contact angle (radians)
     C_PLAN = 23            # P_GRAINS3D, P_HERTZ_MINDLIN: a common combination (compose.pxd skips what it lacks)
-    NCOEFF = 24
+    C_COHESION_K = 24      # sjkr: cohesion energy density k (J/m^3)
+    NCOEFF = 25
 
 cdef enum:                 # normal parts (c[C_NORMAL])
     N_HOOKE = 0            # kn delta
@@ -54,6 +55,7 @@ cdef enum:                 # rolling parts (c[C_ROLLING])
 cdef enum:                 # cohesion parts (c[C_COHESION]): forces added to the normal part's
     K_NONE = 0
     K_CAPILLARY = 1        # a liquid bridge (Willett et al. 2000), from touch to its rupture distance
+    K_SJKR = 2             # simplified JKR: k times the contact area, in contact only (LIGGGHTS's sjkr)
 
 cdef enum:                 # plans (c[C_PLAN], set by dem.law.prepare)
     P_GENERAL = 0          # any parts: cohesion, the damping limit, forces apart and the bond are checked

@@ -16,9 +16,10 @@ class PairSphere(PairCoefficients, Pair):
 
     pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [beta_t BT] [ks KS] [mu_roll MUR]
     pair_coeff I J model hertz E E nu NU en EN mu MU [mu_roll MUR]
-    pair_coeff I J [normal hooke|hertz|jkr|dmt] [cohesion none|capillary] [damping restitution|hertz]
+    pair_coeff I J [normal hooke|hertz|jkr|dmt] [cohesion none|capillary|sjkr] [damping restitution|hertz]
                    [tangential spring|mindlin|viscous] [rolling constant|epsd|epsd2] COEFFICIENTS
-                   (kn E nu w en mu ks gamma_t beta_t mu_roll eta_roll liquid_volume surface_tension contact_angle)
+                   (kn E nu w en mu ks gamma_t beta_t mu_roll eta_roll liquid_volume surface_tension contact_angle
+                   cohesion_energy_density)
 
     Spheres in contact when their surfaces overlap (overlap delta, normal n along the line of centres,
     contact point in the middle of the overlap). The Grains3D law (Part III eq. 10-16) per contact:
@@ -54,7 +55,8 @@ class PairSphere(PairCoefficients, Pair):
     minus 2 pi w R* in contact), `rolling epsd mu_roll .. eta_roll ..` (elastic-plastic spring-dashpot
     rolling resistance, Ai et al. 2011; `epsd2` without the dashpot), `cohesion capillary liquid_volume ..
     surface_tension .. contact_angle ..` (a liquid bridge, Willett et al. 2000, from touch to its rupture
-    distance (1 + theta/2) V^(1/3)). A line for types I != J may leave
+    distance (1 + theta/2) V^(1/3)), `cohesion sjkr cohesion_energy_density ..` (LIGGGHTS's simplified JKR:
+    k times the contact area 2 pi R* delta, in contact only). A line for types I != J may leave
     E, nu and w out: each type's own (pair_coeff I I) is mixed, 1/Y* = (1 - nu_i^2)/E_i + (1 - nu_j^2)/E_j.
     Example (a cohesive powder of two materials)::
 
