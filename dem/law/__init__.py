@@ -63,7 +63,6 @@ WORDS = ("model",) + SELECTORS + tuple(KEYWORDS)      # every word of a law line
 MATERIAL = ("E", "nu", "w")      # of each type: a line for types I != J may leave them to pair_coeff I I
 DEFAULT_PARTS = {"hooke": {"damping": "restitution", "tangential": "spring"},
                  "hertz": {"damping": "hertz", "tangential": "mindlin"}}
-DEFAULTS = {"mu": 0.0, "gamma_t": 0.0, "beta_t": 0.0, "ks": 0.0, "mu_roll": 0.0}
 
 
 def _parts(words, what):
@@ -308,11 +307,6 @@ def prepare(rows):
         rows[..., H_BOND] = np.where(_bonds(rows), width, -1.0)
         width += BOND_WIDTH
     return width
-
-
-def needs_history(rows):
-    """Whether coefficient rows need contact history (prepare's width > 0)."""
-    return any(_needs(rows))
 
 
 def max_reach(rows, reff):
