@@ -228,7 +228,7 @@ def row(c):
     """The coefficient row of a parsed line (materials resolved: has_material, or mix_materials)."""
     r = np.zeros(NCOEFF)
     for sel in SELECTORS:
-        r[COLUMNS[sel.upper()]] = PARTS[sel][c.get(sel, DEFAULT_PARTS["hooke"].get(sel, "constant"))]
+        r[COLUMNS[sel.upper()]] = PARTS[sel][c[sel]]
     r[BETA], r[EN] = beta(c["en"]), c["en"]
     r[MU], r[GAMMA_T] = c.get("mu", 0.0), c.get("gamma_t", 0.0)
     r[KS], r[MU_ROLL] = c.get("ks", 0.0), c.get("mu_roll", 0.0)

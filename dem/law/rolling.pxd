@@ -17,6 +17,12 @@ from libc.math cimport sqrt
 from dem.law.row cimport C_MU_ROLL, C_ETA_ROLL, C_ROLLING, C_H_ROLL, R_CONSTANT, R_EPSD
 
 
+cdef inline double sphere_rolling_inertia(double m, double r) noexcept nogil:
+    """I + m r^2 = 7/5 m r^2: a solid sphere's inertia about a point of its surface (the EPSD dashpot's I_r is
+    the harmonic sum of the two bodies', a wall's infinite)."""
+    return 1.4 * m * r * r
+
+
 cdef inline bint constant_torque(const double* c, const double* wa, const double* wb, const double* fn,
                                  double reff, double* t) noexcept nogil:
     """mu_roll reff |F_n| (fn: the normal force) against wa - wb; False, t untouched, when there is none."""

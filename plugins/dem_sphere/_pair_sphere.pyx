@@ -1,18 +1,17 @@
 # cython: language_level=3
 """Sphere-sphere contacts: analytic geometry (contact point midway in the overlap, levers along the line of
-centres), then the shared law (dem/law/apply.pxd). A pair whose row acts beyond contact (JKR) keeps its
-contact after the surfaces part, while bonded and within the row's reach (dem/law/law.pxd)."""
+centres), then the shared law (dem/law/apply.pxd). A pair whose row acts beyond contact (JKR, a liquid
+bridge) keeps its contact after the surfaces part, while bonded and within the row's reach (dem/law/law.pxd)."""
 cimport numpy as cnp
 from libc.math cimport sqrt
 from dem._particles cimport ParticleView, Particles, count_contact
 from dem.contact.record cimport Contact
 from dem.law.apply cimport Body, apply_pair, bind_body
 from dem.law.law cimport forget, holds
+from dem.law.rolling cimport sphere_rolling_inertia
 from dem.law.row cimport C_ETA_ROLL
 
 ctypedef cnp.int64_t i64
-
-cdef double ROLL_INERTIA = 1.4         # I + m r^2 of a solid sphere about a point of its surface, / (m r^2)
 
 
 def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, const double[:, :, ::1] coeff,
@@ -71,8 +70,8 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 meff = P.rmass[i] * P.rmass[j] / (P.rmass[i] + P.rmass[j])
                 reff = P.radius[i] * P.radius[j] / rsum
                 if cf[C_ETA_ROLL] > 0.0:
-                    con.inertia = 1.0 / (1.0 / (ROLL_INERTIA * P.rmass[i] * P.radius[i] * P.radius[i])
-                                         + 1.0 / (ROLL_INERTIA * P.rmass[j] * P.radius[j] * P.radius[j]))
+                    con.inertia = 1.0 / (1.0 / sphere_rolling_inertia(P.rmass[i], P.radius[i])
+                                         + 1.0 / sphere_rolling_inertia(P.rmass[j], P.radius[j]))
                 # contact point in the middle of the overlap: levers -arm_a n (from i) and +arm_b n (from j)
                 con.arm_a = P.radius[i] - 0.5 * con.delta
                 con.arm_b = P.radius[j] - 0.5 * con.delta

@@ -22,6 +22,7 @@ from dem.shapes._table cimport (ShapeView, TableView, body_ref, equivalent_radiu
                                 component_row, pose_component)
 from dem.law.apply cimport Body, apply_wall, bind_body, contact_radius
 from dem.law.law cimport forget, holds
+from dem.law.rolling cimport sphere_rolling_inertia
 from dem.law.row cimport C_ETA_ROLL
 
 ctypedef cnp.int64_t i64
@@ -43,7 +44,6 @@ SURFACE = {"CYLINDER": S_CYLINDER, "A": S_A, "SIDE": S_SIDE, "POS": S_POS, "R": 
 STAT = {"CONTACTS": W_CONTACTS, "MAXOV": W_MAXOV, "ENERGY": W_ENERGY, "TORQUE": W_TORQUE, "WORST_I": W_WORST_I,
         "WORST_W": W_WORST_W, "WORST_GAP": W_WORST_GAP, "BEHIND": W_BEHIND, "NSTAT": W_NSTAT}
 
-cdef double ROLL_INERTIA = 1.4       # I + m r^2 of a solid sphere about a point of its surface, / (m r^2)
 cdef double TIE_BIAS = 1e-9          # relative tilt of the support direction that breaks ties (plane_touch)
 cdef double ZERO[3]
 ZERO[:] = [0.0, 0.0, 0.0]
@@ -98,12 +98,13 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
           int point, bint average, double[::1] stats):
     """surfaces: rows of S_NCOL values (SURFACE). coeff[w, type]: the law row of surface w. xi: hw history
     values (the law's width) per surface and piece per particle (piece c of surface w at hw (c nw + w);
-    pieces beyond the array's width keep no history); bonds: whether a row acts beyond contact once touched. point: 0 the deepest point, 1 the centroid of the candidate
+    pieces beyond the array's width keep no history); bonds: whether a row acts beyond contact once touched.
+    point: 0 the deepest point, 1 the centroid of the candidate
     points beyond the surface, 2 multipoint: a polytope (box, polyhedron) touches at every vertex beyond
     the surface, each with the deepest overlap and a weight 1/alpha, alpha the particle's points against
     that surface (Descantes 2022 eq. 3; no tangential spring: the points are not tracked). average: Model B
-    over the pieces touching one surface. A sphere whose row acts beyond contact (JKR) keeps its contact
-    after it leaves the surface while bonded and within the row's reach. stats: the W_ sums (STAT)."""
+    over the pieces touching one surface. A sphere whose row acts beyond contact (JKR, a bridge) keeps its
+    contact after it leaves the surface while bonded and within the row's reach. stats: the W_ sums (STAT)."""
     cdef Particles particles = view.p          # local copies: no call can change them (kept in registers)
     cdef const Particles* P = &particles
     cdef TableView table = shapes.t
@@ -243,7 +244,7 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
                     A.x = x
                     cf = &coeff[w, P.type[i], 0]
                     # the rolling inertia about the contact, I + m r^2 (the EPSD dashpot: spheres only)
-                    con.inertia = ROLL_INERTIA * P.rmass[i] * P.radius[i] * P.radius[i] if (
+                    con.inertia = sphere_rolling_inertia(P.rmass[i], P.radius[i]) if (
                         sphere and cf[C_ETA_ROLL] > 0.0) else 0.0
                     energy += apply_wall(cf, &con, &A, &B,
                                          P.rmass[i] if average or npt == 1 else P.rmass[i] / npt,
