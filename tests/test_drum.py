@@ -277,8 +277,8 @@ def test_surface_fit_recovers_a_tilted_surface():
 
 def test_surface_fit_skips_particles_above_a_gap():
     """Two particles carried on the drum wall high above the bed (as 3D crosses stuck in a rough wall at
-    20 rpm): without the gap rule they are their bins' highest and tilt the line; with it (a vertical gap
-    larger than `gap` above the bed's column) the surface is the bed's again, as without them."""
+    20 rpm): without the gap rule they are their bins' tops and tilt the line; with it (a gap larger than
+    `gap` across the surface above the bed's column) the surface is the bed's again, as without them."""
     rng = np.random.default_rng(3)
     p = rng.uniform(-1, 1, (20000, 2))
     slope = math.tan(math.radians(25))
@@ -287,7 +287,7 @@ def test_surface_fit_skips_particles_above_a_gap():
     both = np.vstack([bed, carried])
     alone = surface_fit(bed[:, 0], bed[:, 1], gap=0.2)
     assert alone[0] == pytest.approx(surface_fit(bed[:, 0], bed[:, 1])[0], abs=1e-12)   # no gap in a dense bed
-    assert abs(surface_fit(both[:, 0], both[:, 1])[0] - alone[0]) > 3.0                 # the old rule is fooled
+    assert abs(surface_fit(both[:, 0], both[:, 1])[0] - alone[0]) > 3.0                 # no gap rule: fooled
     assert surface_fit(both[:, 0], both[:, 1], gap=0.2)[:4] == pytest.approx(alone[:4], abs=1e-12)
 
 
