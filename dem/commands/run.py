@@ -146,12 +146,14 @@ class Run(Command):
 
 
 class ResetTimestep(Command):
-    """reset_timestep N"""
+    """reset_timestep N
+
+    Sets the step count to N. The simulated time goes on from its value at this point."""
     style = "reset_timestep"
     usage = "N"
 
     def __call__(self, words):
         a = self.args(words)
         a.exactly(1)
-        self.sim.update.ntimestep = a.int(0, "N", nonneg=True)
+        self.sim.update.reset_step(a.int(0, "N", nonneg=True))
         self.sim.neighbor.invalidate()
