@@ -37,6 +37,8 @@ class Sim:
         self.comm = comm or make_comm(self)
         self.screen = screen and self.comm.me == 0
         self.logfile = open_log(log) if (log and self.comm.me == 0) else None
+        self._screen_lines = Lines(lambda text: print(text, flush=True))
+        self._log_lines = Lines(self._log_write)
         self.atom = Atom()
         self.domain = Domain(self)
         self.groups = Groups(self)
@@ -99,13 +101,13 @@ class Sim:
 
     # ----- output ----------------------------------------------------------------------------------
     def print(self, text, screen=True):
+        """A line to the screen and the log (each counts a line repeated right after itself: Lines)."""
         if self.comm.me != 0:
             return
         if screen and self.screen:
-            print(text, flush=True)
+            self._screen_lines.line(text)
         if self.logfile:
-            self.logfile.write(text + "\n")
-            self.logfile.flush()
+            self._log_lines.line(text)
 
     def warning(self, text):
         self.print(f"WARNING: {text}")
@@ -123,10 +125,17 @@ class Sim:
 
     def close(self):
         """Flush and close every output file (also after an error: nothing half-written stays open)."""
+        self._screen_lines.flush()
+        self._log_lines.flush()
         self.output.close()
         if self.logfile:
             self.logfile.close()
             self.logfile = None
+
+    def _log_write(self, text):
+        if self.logfile:
+            self.logfile.write(text + "\n")
+            self.logfile.flush()
 
     def __enter__(self):
         return self
@@ -134,6 +143,28 @@ class Sim:
     def __exit__(self, *exc):
         self.close()
         return False
+
+
+class Lines:
+    """Lines of text to `write`, where the same line again right after itself is counted, not written
+    (a loop of create_atoms prints `Created 1 particles` hundreds of times): the count follows when
+    another line comes, or at flush."""
+
+    def __init__(self, write):
+        self.write, self.last, self.repeats = write, None, 0
+
+    def line(self, text):
+        if text == self.last:
+            self.repeats += 1
+            return
+        self.flush()
+        self.last = text
+        self.write(text)
+
+    def flush(self):
+        if self.repeats:
+            n, self.repeats = self.repeats, 0
+            self.write(f"(the line above {n} more time{'s' if n > 1 else ''})")
 
 
 def open_log(path):

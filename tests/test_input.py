@@ -493,3 +493,29 @@ def test_command_errors_get_location_once(sim):
     with pytest.raises(DemError) as info:
         sim.input.one("boom")
     assert info.value.where == "<command>:1"
+
+
+def test_a_repeated_line_is_counted(tmp_path, capsys):
+    """A loop of create_atoms prints `Created 1 particles` on the screen once and then how many more
+    times (in.drum's rough wall printed it 234 times before the first thermo line); a different line, or
+    the end, brings the count. The log, where the commands are echoed between them, keeps every line."""
+    import dem
+    log, script = tmp_path / "log.dem", tmp_path / "in.loop"
+    script.write_text("""
+region box block 0 1 0 1 0 1
+create_box 1 box
+variable i loop 5
+label again
+create_atoms 1 single $(0.1*v_i) 0.5 0.5 radius 0.01 density 1000
+next i
+jump SELF again
+print done
+create_atoms 1 single 0.9 0.9 0.9 radius 0.01 density 1000
+create_atoms 1 single 0.9 0.1 0.9 radius 0.01 density 1000
+""")
+    with dem.Simulation(screen=True, log=str(log)) as sim:
+        sim.file(str(script))
+    assert capsys.readouterr().out.splitlines()[-5:] == [
+        "Created 1 particles", "(the line above 4 more times)", "done", "Created 1 particles",
+        "(the line above 1 more time)"]
+    assert log.read_text().count("Created 1 particles") == 7
