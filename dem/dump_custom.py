@@ -7,6 +7,7 @@ import numpy as np
 
 from .dump import Dump, atomic_write, ensure_dir
 from .errors import DemError, did_you_mean
+from .gzip_member import GzipMember
 
 # column -> (frame array, component or None, kind); kind "i" integer, "f" float
 COLUMNS = {"id": ("id", None, "i"), "type": ("type", None, "i"), "mass": ("mass", None, "f"),
@@ -90,8 +91,8 @@ class DumpCustom(Dump):
     File: ``*`` in the name is replaced by the step (one file per snapshot, each written through a
     temporary file: a reader never sees half a snapshot); without ``*`` every snapshot is appended to
     the one file (created at the first snapshot, replacing an old file unless ``dump_modify append
-    yes``). A name ending in ``.gz`` is gzip-compressed (in one file, each snapshot is a gzip member: the
-    file is a valid gzip stream after every snapshot). The file is closed between snapshots.
+    yes``). A name ending in ``.gz`` is gzip-compressed (one file is one gzip stream, which OVITO reads
+    whole, complete after every snapshot: it can be read while the run goes on). The file is closed between snapshots.
 
     ``dump_modify ID keyword value ...`` (any number of them, after the dump command):
 
@@ -122,6 +123,7 @@ class DumpCustom(Dump):
         self.write_time = False
         self.append = False
         self._opened = False         # the single file was created (later snapshots append)
+        self._member = GzipMember()  # the single .gz file's one gzip member
         super().__init__(sim, did, group, every, path, [])
         if not args:
             raise DemError(f"dump {did}: dump custom needs the columns to write after the file name "
@@ -309,14 +311,16 @@ class DumpCustom(Dump):
 
     def write_frame(self, frame):
         data = self.snapshot_text(frame).encode("ascii")
-        if self.gzip:
-            data = gzip.compress(data, compresslevel=6)
         path = self.frame_path(frame.step)
         if "*" in self.path:
-            atomic_write(path, data)
+            atomic_write(path, gzip.compress(data, compresslevel=6) if self.gzip else data)
             return
         ensure_dir(path)
-        mode = "ab" if (self._opened or self.append) else "wb"
+        mode = "r+b" if (self._opened or self.append) and os.path.exists(path) else "wb"
         with open(path, mode) as f:
-            f.write(data)
+            if self.gzip:
+                self._member.append(f, data)
+            else:
+                f.seek(0, 2)
+                f.write(data)
         self._opened = True

@@ -2,6 +2,7 @@
 with a parser of our own (always), and read back by OVITO's own reader when the `ovito` package is
 installed (pip install ovito)."""
 import gzip
+import zlib
 
 import numpy as np
 import pytest
@@ -94,14 +95,24 @@ def test_star_gzip_pad_time_and_group(tmp_path):
     s = parse(gzip.decompress((tmp_path / "snap.000010.dump.gz").read_bytes()).decode())
     assert len(s) == 1 and s[0]["step"] == 10 and s[0]["time"] == sim.update.time
     check_values(s[0], expected(sim, "big"))
-    # one gzip file: one member per snapshot, a valid stream after every snapshot
+    # one gzip file: one member (OVITO reads the first only), complete after every snapshot
     g = DumpCustom(sim, "g", "all", 10, str(tmp_path / "one.dump.gz"), ["id", "x", "y", "z"])
     g.write(10)
-    assert [s["step"] for s in parse(gzip.open(tmp_path / "one.dump.gz", "rt").read())] == [10]
+    assert [s["step"] for s in parse(first_member(tmp_path / "one.dump.gz"))] == [10]
     g.write(20)
     g.close()
     g.write(30)          # reopened by a later run: appended
+    assert [s["step"] for s in parse(first_member(tmp_path / "one.dump.gz"))] == [10, 20, 30]
     assert [s["step"] for s in parse(gzip.open(tmp_path / "one.dump.gz", "rt").read())] == [10, 20, 30]
+
+
+def first_member(path):
+    """The text of the file's first gzip member, checking it is the whole file (as a reader that stops
+    at the end of the first member sees it)."""
+    d = zlib.decompressobj(31)
+    text = d.decompress(path.read_bytes())
+    assert d.eof and d.unused_data == b""
+    return text.decode()
 
 
 def test_sort_append_and_derived_columns(tmp_path):
@@ -223,7 +234,7 @@ def test_read_by_ovito(tmp_path, monkeypatch):
     sim = dem.Simulation(screen=False)
     sim.commands(CUBES + "dump t all custom 20 cubes.*.dump.gz " + " ".join(ALL) + " shapex shapey shapez\n"
                  "dump_modify t time yes\n" "dump one all custom 20 one.dump id type x y z radius\n"
-                 "run 40\n")
+                 "dump gz all custom 20 one.dump.gz id type x y z radius\n" "run 40\n")
     pipeline = ovito_io.import_file(str(tmp_path / "cubes.*.dump.gz"))
     assert pipeline.num_frames == 3
     data = pipeline.compute(2)
@@ -243,6 +254,7 @@ def test_read_by_ovito(tmp_path, monkeypatch):
     np.testing.assert_allclose(np.asarray(p["Aspherical Shape"]), 0.001, rtol=1e-7)
     np.testing.assert_array_equal(np.asarray(p["shape"]), 0)
     np.testing.assert_allclose(data.cell[:, :3].diagonal(), sim.domain.hi - sim.domain.lo)
-    single = ovito_io.import_file(str(tmp_path / "one.dump"))
-    assert single.num_frames == 3
-    assert single.compute(1).attributes["Timestep"] == 20
+    for name in ("one.dump", "one.dump.gz"):        # every frame of one file, compressed or not
+        single = ovito_io.import_file(str(tmp_path / name))
+        assert single.num_frames == 3
+        assert [single.compute(k).attributes["Timestep"] for k in range(3)] == [0, 20, 40]
