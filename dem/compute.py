@@ -130,7 +130,7 @@ class ComputeCommand(Command):
             raise a.error(f"compute ID '{cid}' already exists (uncompute it first)")
         if not re.match(r"^[A-Za-z0-9_]+$", cid):
             raise a.error(f"compute ID '{cid}' may contain only letters, digits and underscores")
-        cls = self.sim.registry.get("compute", style)
+        cls = self.sim.registry.get("compute", style, a.words[3:])
         table[cid] = cls(self.sim, cid, group, a.words[3:])
 
 

@@ -11,7 +11,7 @@ A quote opens only at the start of a word (so ``don't`` is a plain word) and mus
 import os
 import re
 
-from .errors import DemError, unknown
+from .errors import DemError, unknown, unknown_style
 from .variable import Variables, format_number
 
 MAX_DEPTH = 64  # nested include / lines calls: deeper is an include loop
@@ -285,7 +285,7 @@ class Input:
             return
         commands = self.sim.registry.styles["command"]
         if word not in commands:
-            raise unknown("command", word, [*commands, *self._own])
+            raise unknown_style("command", word, [*commands, *self._own], args)
         self.sim.registry.get("command", word)(self.sim)(args)
 
     def _is_root(self):

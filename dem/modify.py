@@ -21,7 +21,7 @@ class Modify:
         if self.sim.update.running:
             raise DemError(f"fix {fid}: a fix cannot be defined during a run (e.g. from a python/every "
                            f"callback): define it before the run")
-        cls = self.sim.registry.get("fix", style)
+        cls = self.sim.registry.get("fix", style, args[3:])
         self.sim.groups.bit(group)
         fix = cls(self.sim, fid, group, args[3:])
         for i, old in enumerate(self.fixes):

@@ -26,7 +26,7 @@ class Output:
         if len(args) < 5:
             raise DemError("dump needs: dump ID group style N file [args]")
         did, group, style, every, path = args[:5]
-        cls = self.sim.registry.get("dump", style)
+        cls = self.sim.registry.get("dump", style, args[5:])
         try:
             every = int(every)
         except ValueError:

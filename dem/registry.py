@@ -3,7 +3,7 @@ and maps (kind, style name) to a class. A duplicate name is an error naming both
 import pluggy
 
 from . import hookspecs
-from .errors import DemError, unknown
+from .errors import DemError, unknown_style
 
 KINDS = ("command", "pair", "fix", "region", "dump", "shape", "compute")
 
@@ -36,12 +36,13 @@ class Registry:
         self.styles[kind][style] = cls
         self._provider[key] = provider
 
-    def get(self, kind, style):
+    def get(self, kind, style, args=()):
+        """The class of a style; `args` (the words after the style) choose the LIGGGHTS/LAMMPS answer of an
+        unknown one (`pair_style gran model hooke`)."""
         try:
             return self.styles[kind][style]
         except KeyError:
-            raise unknown(f"{kind} style" if kind != "command" else "command", style,
-                          self.styles[kind]) from None
+            raise unknown_style(kind, style, self.styles[kind], args) from None
 
     def provider(self, kind, style):
         return self._provider[(kind, style)]

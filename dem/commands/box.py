@@ -67,7 +67,7 @@ class RegionCommand(Command):
         rid, style = a[0], a[1]
         if rid in self.sim.domain.regions:
             raise a.error(f"region ID '{rid}' already exists")
-        cls = self.sim.registry.get("region", style)
+        cls = self.sim.registry.get("region", style, a.words[2:])
         self.sim.domain.regions[rid] = cls(self.sim, rid, a.words[2:])
 
 

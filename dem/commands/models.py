@@ -15,7 +15,7 @@ class PairStyle(Command):
     def __call__(self, words):
         a = self.args(words)
         a.need(1)
-        cls = self.sim.registry.get("pair", a[0])
+        cls = self.sim.registry.get("pair", a[0], a.words[1:])
         nb = self.sim.neighbor
         if self.sim.pair is not None:        # a replaced style takes its contact history with it
             for h in nb.histories:
