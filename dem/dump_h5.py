@@ -40,9 +40,32 @@ def _number_type(dtype):
     raise TypeError(f"no XDMF number type for {dtype}")
 
 
-def _attribute_type(shape):
-    # an (n, 4) array must be a Vector: the XDMF readers make Matrix one tuple of all values
-    return "Scalar" if len(shape) == 1 else "Vector"
+COMPONENTS = {"orientation": "wxyz"}   # names of the scalar attributes a field of other than 1 or 3 columns becomes
+
+
+def _attributes(name, center, h5name, path, shape, dtype, indent):
+    """XDMF attributes of one dataset: a Scalar (n,) or a Vector (n, 3); any other width is one Scalar per
+    column, each a hyperslab of the dataset (ParaView 5.11's XDMF reader reads a Vector as 3 columns
+    whatever its width, 80 tuples of 3 for 60 quaternions; VTK 9's reads a Matrix as one tuple)."""
+    if len(shape) == 1 or shape[1] == 3:
+        return [f'{indent}<Attribute Name={quoteattr(name)} '
+                f'AttributeType="{"Scalar" if len(shape) == 1 else "Vector"}" Center="{center}">',
+                f"{indent}  " + _data_item(h5name, path, shape, dtype),
+                f"{indent}</Attribute>"]
+    n, width = (int(d) for d in shape)
+    labels = COMPONENTS.get(name) or [str(k) for k in range(width)]
+    ntype, precision = _number_type(dtype)      # on the slab too: the Xdmf3 readers skip it without
+    lines = []
+    for k, label in enumerate(labels):
+        lines += [f'{indent}<Attribute Name={quoteattr(f"{name}_{label}")} AttributeType="Scalar" '
+                  f'Center="{center}">',
+                  f'{indent}  <DataItem ItemType="HyperSlab" Dimensions="{n} 1" Type="HyperSlab" '
+                  f'NumberType="{ntype}" Precision="{precision}">',
+                  f'{indent}    <DataItem Dimensions="3 2" Format="XML">0 {k} 1 1 {n} 1</DataItem>',
+                  f"{indent}    " + _data_item(h5name, path, shape, dtype),
+                  f"{indent}  </DataItem>",
+                  f"{indent}</Attribute>"]
+    return lines
 
 
 def _data_item(h5name, path, shape, dtype):
@@ -66,19 +89,15 @@ def xdmf_grid(h5name, step, time, datasets):
              f'        <Time Value="{float(time)!r}"/>',
              f'        <Topology TopologyType="Polyvertex" NumberOfElements="{n}" NodesPerElement="1"/>',
              '        <Geometry GeometryType="XYZ">']
-    if n == 0:
+    if n == 0:      # a blank, not nothing: the Xdmf3 readers abort ParaView on an item without content
         lines.append('          <DataItem Dimensions="0 3" NumberType="Float" Precision="8" Format="XML">'
-                     '</DataItem>')
+                     ' </DataItem>')
     else:
         lines.append("          " + _data_item(h5name, f"{base}/position", *datasets["position"]))
     lines.append("        </Geometry>")
     order = sorted((f for f in datasets if f != "position"), key=lambda f: f != "radius")
     for field in order if n else ():
-        shape, dtype = datasets[field]
-        lines.append(f'        <Attribute Name={quoteattr(XDMF_NAMES[field])} '
-                     f'AttributeType="{_attribute_type(shape)}" Center="Node">')
-        lines.append("          " + _data_item(h5name, f"{base}/{field}", shape, dtype))
-        lines.append("        </Attribute>")
+        lines += _attributes(XDMF_NAMES[field], "Node", h5name, f"{base}/{field}", *datasets[field], "        ")
     lines.append("      </Grid>")
     return "\n".join(lines) + "\n"
 
@@ -113,10 +132,8 @@ def xdmf_surface(h5name, step, time, particle_grid, npoints, ntris, cell_fields=
                   "            " + _data_item(h5name, f"{base}/id", (npoints,), np.int64),
                   "          </Attribute>"]
         for name, (shape, dtype) in (cell_fields or {}).items():
-            lines += [f'          <Attribute Name={quoteattr("cell_" + name if name == "id" else name)} '
-                      f'AttributeType="{_attribute_type(shape)}" Center="Cell">',
-                      "            " + _data_item(h5name, f"{base}/cell_{name}", shape, dtype),
-                      "          </Attribute>"]
+            lines += _attributes("cell_" + name if name == "id" else name, "Cell", h5name, f"{base}/cell_{name}",
+                                 shape, dtype, "          ")
         lines.append("        </Grid>")
     lines.append("      </Grid>")
     return "\n".join(lines) + "\n"
@@ -184,6 +201,11 @@ class DumpH5(Dump):
             radius       (n,)   float64
             mass         (n,)   float64
             shape        (n,)   int32    shape index (-1: sphere)
+
+    In the XDMF the quaternion is four scalars ``orientation_w``, ``_x``, ``_y``, ``_z``, each a column of
+    the one dataset: declared as one 4-column attribute, ParaView 5.11's "Xdmf Reader" reads a Vector as
+    3 columns (80 tuples for 60 particles) and VTK 9's reads a Matrix as one tuple. ParaView's "Xdmf3
+    Reader" skips these columns ("Skipping unrecognized array type"); its other arrays are right.
 
     Keyword ``fields`` limits the per-particle datasets (``position`` is always written); default: all.
 

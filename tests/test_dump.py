@@ -153,8 +153,8 @@ def test_h5_xdmf_references_datasets(tmp_path):
             topo = grid.find("Topology")
             assert topo.get("TopologyType") == "Polyvertex" and int(topo.get("NumberOfElements")) == n
             assert grid.find("Geometry").get("GeometryType") == "XYZ"
-            items = grid.findall(".//DataItem")
-            assert len(items) == len(ATOM)
+            items = grid.findall(".//DataItem[@Format='HDF']")
+            assert {item.text.split(":", 1)[1].rsplit("/", 1)[1] for item in items} == set(ATOM)
             for item in items:
                 fname, dset = item.text.strip().split(":", 1)
                 assert fname == "snap.h5"
@@ -164,9 +164,14 @@ def test_h5_xdmf_references_datasets(tmp_path):
                 assert item.get("NumberType") == ("Float" if data.dtype.kind == "f" else "Int")
                 assert data.shape[0] == n
             attrs = {a.get("Name"): a for a in grid.findall("Attribute")}
-            assert set(attrs) == set(ATOM) - {"position"}
+            quaternion = [f"orientation_{c}" for c in "wxyz"]
+            assert set(attrs) == set(ATOM) - {"position", "orientation"} | set(quaternion)
             assert attrs["radius"].get("AttributeType") == "Scalar"
             assert attrs["velocity"].get("AttributeType") == "Vector"
+            for k, name in enumerate(quaternion):       # one column of the (n, 4) dataset each
+                slab = attrs[name].find("DataItem")
+                assert slab.get("ItemType") == "HyperSlab" and slab.get("Dimensions") == f"{n} 1"
+                assert slab.find("DataItem").text.split() == ["0", str(k), "1", "1", str(n), "1"]
             assert attrs["radius"].get("Center") == "Node"
     d.close()
     assert not list(tmp_path.glob(".*tmp"))      # no temp file left behind
@@ -464,5 +469,9 @@ def test_files_read_by_vtk(tmp_path):
             pd = o.GetPointData()
             assert pd.GetScalars().GetName() == "radius"
             for name in names:
-                np.testing.assert_array_equal(vtk_to_numpy(pd.GetArray(name)), exp[name])
+                if name == "orientation":     # XDMF: one scalar per component (dump_h5._attributes)
+                    got = np.column_stack([vtk_to_numpy(pd.GetArray(f"orientation_{c}")) for c in "wxyz"])
+                else:
+                    got = vtk_to_numpy(pd.GetArray(name))
+                np.testing.assert_array_equal(got, exp[name])
             np.testing.assert_array_equal(vtk_to_numpy(o.GetPoints().GetData()), exp["position"])
