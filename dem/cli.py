@@ -10,6 +10,7 @@ from .errors import DemError
 USAGE = ("usage: dem -in FILE [-var NAME VALUE ...] [-log FILE|none] [-screen none] [-echo screen|log|both]\n"
          "       dem [options] < FILE   (the script from standard input)\n"
          "       dem -h                 (this, and every installed style)\n"
+         "       dem -h NAME            (the documentation of a command or style, e.g. dem -h wall/mesh)\n"
          "       dem --version")
 
 
@@ -22,6 +23,27 @@ def styles_text():
         names = sorted(reg.styles[kind])
         lines.append(f"  {kind} ({len(names)}): " + ", ".join(f"{n} ({reg.provider(kind, n)})" for n in names))
     return "\n".join(lines)
+
+
+def style_help(name):
+    """The documentation of every installed command or style called `name` (`fix wall/mesh` and a
+    `wall/mesh` of another kind would both show), as docs/commands.md has it; an error naming the closest
+    names (and dem's equivalent of a LIGGGHTS or LAMMPS name) when there is none."""
+    import inspect
+    from . import foreign_names
+    from .errors import did_you_mean
+    from .registry import KINDS, default_registry
+    reg = default_registry()
+    found = [(kind, reg.styles[kind][name]) for kind in KINDS if name in reg.styles[kind]]
+    if not found:
+        for kind in KINDS:
+            answer = foreign_names.answer(kind, name, ())
+            if answer is not None:
+                raise DemError(f"dem has no '{name}' ({answer.origin} {kind}): {answer.text} [docs/migration.md]")
+        raise DemError(f"no command or style '{name}'"
+                       + did_you_mean(name, [n for kind in KINDS for n in reg.styles[kind]]))
+    return "\n\n".join(f"{kind} {name} (provided by {reg.provider(kind, name)}):\n\n"
+                       + inspect.cleandoc(cls.__doc__ or "(undocumented)") for kind, cls in found)
 
 
 def parse(argv):
@@ -54,8 +76,11 @@ def parse(argv):
             opts["echo"] = argv[i + 1]
             i += 2
         elif key in ("h", "help"):
-            print(USAGE)
-            print(styles_text())
+            if i + 1 < len(argv) and not argv[i + 1].startswith("-"):
+                print(style_help(argv[i + 1]))
+            else:
+                print(USAGE)
+                print(styles_text())
             raise SystemExit(0)
         elif key == "version":
             print(f"dem {__version__}")

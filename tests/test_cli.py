@@ -56,6 +56,23 @@ def test_help_lists_every_installed_style_by_kind(tmp_path):
     assert "wall/drum (walls)" in out.stdout and "convex/gjk (convex)" in out.stdout
 
 
+def test_help_on_one_style(tmp_path):
+    """`dem -h NAME` prints the documentation of that command or style (as `lmp -h` does), the same text
+    as docs/commands.md; an unknown name is an error with the closest names, a LIGGGHTS name with dem's
+    equivalent."""
+    import inspect
+    from dem_walls.fix_wall_mesh import FixWallMesh
+    out = dem_run(["-h", "wall/mesh"], cwd=tmp_path)
+    assert out.returncode == 0 and out.stdout.startswith("fix wall/mesh (provided by walls):")
+    assert inspect.cleandoc(FixWallMesh.__doc__) in out.stdout
+    assert dem_run(["-h", "run"], cwd=tmp_path).stdout.startswith("command run (provided by core):")
+    for name, message in (("wal/mesh", "no command or style 'wal/mesh' (did you mean 'wall/mesh'?)"),
+                          ("mesh/surface", "dem has no 'mesh/surface' (LIGGGHTS fix): LIGGGHTS's fix mesh/surface"),
+                          ("nothing-like-it", "no command or style 'nothing-like-it'")):
+        out = dem_run(["-h", name], cwd=tmp_path)
+        assert out.returncode != 0 and message in out.stderr and "Traceback" not in out.stderr
+
+
 def test_lammps_thermo_names(tmp_path):
     """spcpu, tpcpu and cpuremain (LAMMPS) are dem's tps, tps * dt and eta: evaluated one after the other
     in one thermo line, they agree to the clock's advance between them (5 %)."""
