@@ -115,6 +115,20 @@ class Sim:
     def thermo_keyword(self, name):
         return self.output.thermo.keyword(name)
 
+    def thermo_history(self):
+        """Every thermo line printed so far, as {keyword: numpy array} (one entry per line; NaN where a
+        line's thermo_style lacked the keyword)."""
+        return self.output.thermo.columns()
+
+    def thermo_dataframe(self):
+        """thermo_history as a pandas DataFrame (pandas is not a dependency of dem: install it)."""
+        try:
+            import pandas
+        except ImportError:
+            raise DemError("thermo_dataframe needs pandas (pip install pandas); thermo_history gives "
+                           "the same columns as numpy arrays") from None
+        return pandas.DataFrame(self.thermo_history())
+
     def gather(self, name):
         """The global per-particle array `name`, ordered by particle id (tag)."""
         local = self.atom.local(name)

@@ -28,6 +28,7 @@ class Thermo:
         self.style = list(DEFAULT_STYLE)
         self.float_format = "{:.6g}"
         self.header_printed_for = None
+        self.history = []          # (style, values) of every thermo line printed: sim.thermo_history
 
     # ----- values ---------------------------------------------------------------------------------
     def _ke(self, synchronised=False):
@@ -133,5 +134,16 @@ class Thermo:
         self.sim.print(" ".join(cols))
 
     def line(self):
-        values = [self._format(n, self.keyword(n)) for n in self.style]
-        self.sim.print(" ".join(values))
+        values = [float(self.keyword(n)) for n in self.style]
+        self.history.append((tuple(self.style), values))
+        self.sim.print(" ".join(self._format(n, v) for n, v in zip(self.style, values)))
+
+    def columns(self):
+        """The thermo lines printed so far as {keyword: array}, one entry per line (NaN in the lines
+        whose thermo_style lacked the keyword), keywords in the order they first appeared."""
+        names = list(dict.fromkeys(n for style, _ in self.history for n in style))
+        table = {n: np.full(len(self.history), np.nan) for n in names}
+        for row, (style, values) in enumerate(self.history):
+            for n, v in zip(style, values):
+                table[n][row] = v
+        return table

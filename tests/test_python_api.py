@@ -37,6 +37,20 @@ def test_the_documented_example_runs(tmp_path, monkeypatch, capsys):
     assert all(h[2] > 0 for h in history) and f"{counts[stop]} particles" in capsys.readouterr().out
 
 
+def test_the_notebook_example_runs(tmp_path, monkeypatch):
+    """docs/python.md's thermo_history example, as printed (matplotlib without a display): the pour's
+    kinetic energy, one value per thermo line."""
+    import matplotlib
+    matplotlib.use("Agg")
+    example = next(b for b in re.findall(r"```python\n(.*?)```", DOC.read_text(), re.S) if "thermo_history" in b)
+    monkeypatch.chdir(tmp_path)
+    namespace = {}
+    exec(compile(example, str(DOC), "exec"), namespace)
+    h = namespace["h"]
+    assert h["step"].tolist() == list(range(0, 20001, 500)) and (h["ke"][1:] > 0).all()
+    assert h["atoms"][-1] == 60
+
+
 def test_every_sees_the_state_of_the_step_just_done():
     seen = []
     sim = dem.Simulation(screen=False).commands(BALL)
@@ -89,3 +103,38 @@ def test_unfix_from_a_callback_takes_effect_at_once():
     v = sim.gather("v").copy()
     sim.run(20)
     assert np.array_equal(sim.gather("v"), v)            # no gravity after step 10, nothing else acts
+
+
+def test_thermo_history_as_arrays(monkeypatch):
+    """sim.thermo_history(): every thermo line printed, one array per keyword; a keyword a later
+    thermo_style adds is NaN in the earlier lines. thermo_dataframe() the same as a pandas DataFrame, or
+    an error saying pandas is needed."""
+    import math
+    import sys
+    sim = dem.Simulation(screen=False)
+    sim.commands("""
+        region box block 0 1 0 1 0 1
+        create_box 1 box
+        create_atoms 1 single 0.5 0.5 0.5 radius 0.01 density 1000 v 1 0 0
+        pair_style sphere
+        pair_coeff * * kn 1e5 en 0.5 mu 0.5
+        fix integ all nve/sphere
+        timestep 1e-4
+        thermo 100
+        run 300
+        thermo_style custom step ke atoms
+        run 200
+    """)
+    h = sim.thermo_history()
+    assert list(h) == ["step", "time", "atoms", "ke", "erot", "contacts", "cn", "maxov", "pct", "tps", "eta"]
+    # run 300: steps 0-300; run 200 prints its first line (300) again, as LAMMPS does
+    assert h["step"].tolist() == [0, 100, 200, 300, 300, 400, 500]
+    assert h["ke"].tolist() == [sim.thermo_keyword("ke")] * 7     # no contact, no gravity: constant
+    assert h["ke"][0] == pytest.approx(0.5 * 1000 * 4 / 3 * math.pi * 0.01 ** 3, rel=1e-15)
+    assert h["time"][:4].tolist() == [k * 100 * 1e-4 for k in range(4)] and all(math.isnan(t) for t in h["time"][4:])
+    pandas = pytest.importorskip("pandas")
+    frame = sim.thermo_dataframe()
+    assert isinstance(frame, pandas.DataFrame) and frame["step"].tolist() == h["step"].tolist()
+    monkeypatch.setitem(sys.modules, "pandas", None)
+    with pytest.raises(dem.DemError, match="thermo_dataframe needs pandas"):
+        sim.thermo_dataframe()
