@@ -5,7 +5,8 @@ import os
 
 import numpy as np
 
-from .dump import Dump, atomic_write, ensure_dir
+from .dump import Dump
+from .files import atomic_write, open_output
 from .errors import DemError, did_you_mean
 
 # column -> (frame array, component or None, kind); kind "i" integer, "f" float
@@ -313,10 +314,9 @@ class DumpCustom(Dump):
             data = gzip.compress(data, compresslevel=6)
         path = self.frame_path(frame.step)
         if "*" in self.path:
-            atomic_write(path, data)
+            atomic_write(path, data, f"dump {self.id}")
             return
-        ensure_dir(path)
         mode = "ab" if (self._opened or self.append) else "wb"
-        with open(path, mode) as f:
+        with open_output(path, f"dump {self.id}", mode) as f:
             f.write(data)
         self._opened = True

@@ -4,13 +4,12 @@ and wall histories, neighbor-list reference positions, fix states, step and time
 
 Particle order is kept as it is in memory (not sorted by id): the order in which forces are summed is
 then the same as in the uninterrupted run. Layout and versions: docs/restart.md."""
-import os
-
 import numpy as np
 
 from . import restart_file
 from .command import Command
 from .errors import DemError
+from .files import replace_file
 from .interrupt import SIGNAL_STATE
 from .shapes import command as shape_command
 
@@ -20,7 +19,7 @@ VERSION = 3
 PICKLE_VERSIONS = "1 or 2"
 
 
-def write_restart(sim, path):
+def write_restart(sim, path, use="write_restart"):
     atom = sim.atom
     for h in sim.neighbor.histories:
         h.pack()
@@ -44,18 +43,7 @@ def write_restart(sim, path):
     }
     state = sim.comm.gather_restart(state)
     if sim.comm.me == 0:
-        tmp = f"{path}.tmp{os.getpid()}"
-        try:
-            restart_file.write(tmp, state, VERSION)
-            os.replace(tmp, path)
-        except BaseException as e:      # an error or an interrupt: never leave the temporary file
-            try:
-                os.unlink(tmp)
-            except OSError:
-                pass
-            if isinstance(e, OSError):
-                raise DemError(f"write_restart: cannot write '{path}': {e.strerror or e}") from None
-            raise
+        replace_file(path, lambda tmp: restart_file.write(tmp, state, VERSION), use)
 
 
 def load(path):

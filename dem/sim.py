@@ -2,7 +2,6 @@
 input, registry, the shape table and the computes; every style receives the sim and reaches what it
 needs from it."""
 import math
-import os
 import sys
 
 import numpy as np
@@ -11,6 +10,7 @@ from .atom import Atom
 from .comm import make_comm
 from .domain import Domain
 from .errors import DemError
+from .files import open_output
 from .group import Groups
 from .input import Input
 from .modify import Modify
@@ -138,13 +138,7 @@ class Sim:
 
 def open_log(path):
     """The log file, its folder created as dumps do; a clear error when it cannot be written."""
-    folder = os.path.dirname(path)
-    try:
-        if folder:
-            os.makedirs(folder, exist_ok=True)
-        return open(path, "w", encoding="utf-8")
-    except OSError as err:
-        raise DemError(f"cannot write the log file '{path}': {err.strerror}") from None
+    return open_output(path, "the log file (-log)")
 
 
 def fatal(sim, error):
