@@ -64,6 +64,7 @@ def read_restart(sim, path):
     state = load(path)
     if sim.domain.box_exist:
         raise DemError("read_restart: the box already exists (read_restart creates it)")
+    shape_command.check_restart(sim, state.get("shapes") or [])
     dom, atom, up, nb = sim.domain, sim.atom, sim.update, sim.neighbor
     dom.set_boundary(["".join(b) if b[0] != b[1] else b[0] for b in state["boundary"]])
     dom.set_box(state["lo"], state["hi"])
@@ -94,7 +95,7 @@ def read_restart(sim, path):
         nb.last_sort, nb.sort_every = ninfo["last_sort"], ninfo["sort_every"]
     else:
         nb.invalidate()
-    if state.get("shapes"):           # the shape table, unless the script defined it already
+    if state.get("shapes"):           # the shape table, unless the script defined the same already
         shape_command.rebuild(sim, state["shapes"])
     sim.modify.restart_states = dict(state["fixes"])
     sim.restart_pair_state = state["pair"]
@@ -124,8 +125,9 @@ class ReadRestart(Command):
 
     Restores box, particles (all fields, contact and wall histories), shapes, step, time, time step and
     neighbor state; fixes defined afterwards with the same IDs take their saved state back. Pair style,
-    coefficients and fixes are re-specified by the script, as in LAMMPS. With the same commands, the
-    continued run is bitwise identical to the uninterrupted one on one rank."""
+    coefficients and fixes are re-specified by the script, as in LAMMPS; shapes are not (shapes defined
+    before read_restart must be the restart's, the same in the same order, else an error names both).
+    With the same commands, the continued run is bitwise identical to the uninterrupted one on one rank."""
     style = "read_restart"
     usage = "file"
 
