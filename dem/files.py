@@ -2,6 +2,7 @@
 shape database) is a regular file. An existing name that is anything else (a device such as /dev/null, a
 FIFO, a socket, a folder, or a symbolic link to one) is refused: a temporary file renamed over it would
 replace it (run as root, even /dev/null), and a FIFO would block the run until a reader comes."""
+import errno
 import os
 import stat
 
@@ -28,7 +29,10 @@ def ensure_dir(path):
     """Create the folder of `path` when missing."""
     folder = os.path.dirname(path)
     if folder:
-        os.makedirs(folder, exist_ok=True)
+        try:
+            os.makedirs(folder, exist_ok=True)
+        except FileExistsError:     # a file where a folder should be: say so (its errno says "File exists")
+            raise NotADirectoryError(errno.ENOTDIR, f"'{folder}' is not a folder") from None
 
 
 def open_output(path, use, mode="w"):

@@ -36,7 +36,17 @@ class Sim:
         self.registry = registry or default_registry()
         self.comm = comm or make_comm(self)
         self.screen = screen and self.comm.me == 0
-        self.logfile = open_log(log) if (log and self.comm.me == 0) else None
+        self.logfile = None
+        if log:       # rank 0 opens it and tells the others: one error on every rank, never one rank waiting
+            failure = None
+            if self.comm.me == 0:
+                try:
+                    self.logfile = open_log(log)
+                except DemError as e:
+                    failure = e
+            failure = self.comm.bcast(failure)
+            if failure is not None:
+                raise failure
         self.atom = Atom()
         self.domain = Domain(self)
         self.groups = Groups(self)
