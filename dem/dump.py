@@ -41,8 +41,6 @@ Only rank 0 writes files; every rank takes part in gathering the data (``write``
 Writing a style: subclass :class:`Dump`, set ``style`` and ``keywords``, implement ``write_frame(frame)``
 and, when it keeps a file open, ``flush()``/``close_files()``; announce the class from a plugin.
 """
-import os
-
 import numpy as np
 
 from .errors import DemError, did_you_mean
@@ -294,31 +292,3 @@ class Dump:
 
     def __repr__(self):
         return f"<dump {self.id} {self.style} group {self.group} every {self.every} '{self.path}'>"
-
-
-# ----- helpers for writers ------------------------------------------------------------------------
-def ensure_dir(path):
-    """Create the folder of `path` when missing."""
-    folder = os.path.dirname(path)
-    if folder:
-        os.makedirs(folder, exist_ok=True)
-
-
-def atomic_write(path, data):
-    """Write `data` (str or bytes) to `path` through a temporary file and os.replace: a reader (or a
-    crash) never sees a half-written file."""
-    if isinstance(data, str):
-        data = data.encode("utf-8")
-    ensure_dir(path)
-    folder, base = os.path.split(path)
-    tmp = os.path.join(folder, f".{base}.{os.getpid()}.tmp")
-    try:
-        with open(tmp, "wb") as f:
-            f.write(data)
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise

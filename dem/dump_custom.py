@@ -5,7 +5,8 @@ import os
 
 import numpy as np
 
-from .dump import Dump, atomic_write, ensure_dir
+from .dump import Dump
+from .files import atomic_write, open_output
 from .errors import DemError, did_you_mean
 from .gzip_member import GzipMember
 
@@ -313,11 +314,10 @@ class DumpCustom(Dump):
         data = self.snapshot_text(frame).encode("ascii")
         path = self.frame_path(frame.step)
         if "*" in self.path:
-            atomic_write(path, gzip.compress(data, compresslevel=6) if self.gzip else data)
+            atomic_write(path, gzip.compress(data, compresslevel=6) if self.gzip else data, f"dump {self.id}")
             return
-        ensure_dir(path)
         mode = "r+b" if (self._opened or self.append) and os.path.exists(path) else "wb"
-        with open(path, mode) as f:
+        with open_output(path, f"dump {self.id}", mode) as f:
             if self.gzip:
                 self._member.append(f, data)
             else:

@@ -4,7 +4,8 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from .dump import Dump, atomic_write, ensure_dir
+from .dump import Dump
+from .files import atomic_write, check_target, ensure_dir
 from .errors import DemError
 
 FORMAT = "dem-dump-h5"
@@ -341,6 +342,7 @@ class DumpH5(Dump):
             import h5py
         except ImportError:
             raise DemError("dump h5 needs the h5py package (pip install h5py)") from None
+        check_target(self.path, f"dump {self.id}")
         ensure_dir(self.path)
         mode = "a" if self._created else "w"
         try:
@@ -390,7 +392,7 @@ class DumpH5(Dump):
         if walls:
             grid = xdmf_walls(h5name, frame.step, frame.time, grid, walls)
         self._grids[frame.step] = grid
-        atomic_write(self.xdmf_path, xdmf_document(self._grids.values(), name=str(self.id)))
+        atomic_write(self.xdmf_path, xdmf_document(self._grids.values(), name=str(self.id)), f"dump {self.id}")
 
     def _fill_frame(self, f, g, frame):
         """The attributes and datasets of a frame into group g; (datasets {field: (shape, dtype)}, surface)."""

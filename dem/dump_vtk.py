@@ -5,7 +5,8 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from .dump import Dump, atomic_write
+from .dump import Dump
+from .files import atomic_write
 from .errors import DemError
 
 VTK_VERTEX = 1
@@ -268,12 +269,12 @@ class DumpVTK(Dump):
 
     def write_frame(self, frame):
         paths = [self.frame_path(frame.step)]
-        atomic_write(paths[0], self.frame_text(frame))
+        atomic_write(paths[0], self.frame_text(frame), f"dump {self.id}")
         for fix in self.sim.modify.fixes if self.writes_walls else ():   # mesh walls: parts 1, 2 ...
             wall = fix.surface_mesh()
             if wall is not None:
                 paths.append(self.wall_path(frame.step, fix.id))
-                atomic_write(paths[-1], self.wall_text(frame, *wall))
+                atomic_write(paths[-1], self.wall_text(frame, *wall), f"dump {self.id}")
         if self.pvd_path is not None:
             self._collection[frame.step] = (frame.time, paths)
-            atomic_write(self.pvd_path, self.pvd_text())
+            atomic_write(self.pvd_path, self.pvd_text(), f"dump {self.id}")

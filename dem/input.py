@@ -12,6 +12,7 @@ import os
 import re
 
 from .errors import DemError, unknown, unknown_style
+from .files import open_output
 from .variable import Variables, format_number
 
 MAX_DEPTH = 64  # nested include / lines calls: deeper is an include loop
@@ -442,8 +443,9 @@ def _if_branches(args):
 
 def _write(target, text):
     path, mode = target
+    handle = open_output(path, "print", mode)
     try:
-        with open(path, mode, encoding="utf-8") as handle:
+        with handle:
             handle.write(text + "\n")
     except OSError as err:
-        raise DemError(f"print cannot write '{path}': {err.strerror}") from None
+        raise DemError(f"print: cannot write '{path}': {err.strerror}") from None

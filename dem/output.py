@@ -95,7 +95,7 @@ class Output:
             from .restart import write_restart
             path = self.restart_files[(step // self.restart_every) % len(self.restart_files)]
             path = path.replace("*", str(step))
-            write_restart(self.sim, path)
+            write_restart(self.sim, path, "restart")
             self.last_restart = (path, step)
 
     def emergency(self):

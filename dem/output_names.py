@@ -5,6 +5,7 @@ import os
 import re
 
 from .errors import DemError
+from .files import check_target
 
 
 def _key(path):
@@ -29,8 +30,11 @@ class OutputNames:
         self.claims = {}      # owner (e.g. "dump 1") -> [(file, use)]
 
     def check(self, paths, use, owner=None):
-        """DemError if one of `paths` is a file of another owner's output."""
+        """DemError if one of `paths` is a file of another owner's output, or names something other than a
+        regular file (a name with `*` is checked as each of its files is written)."""
         for path in paths:
+            if "*" not in path:
+                check_target(path, use)
             for other, entries in self.claims.items():
                 if other == owner:
                     continue

@@ -4,13 +4,12 @@ and wall histories, neighbor-list reference positions, fix states, step and time
 
 Particle order is kept as it is in memory (not sorted by id): the order in which forces are summed is
 then the same as in the uninterrupted run. Layout and versions: docs/restart.md."""
-import os
-
 import numpy as np
 
 from . import restart_file
 from .command import Command
 from .errors import DemError
+from .files import replace_file
 from .interrupt import SIGNAL_STATE
 from .shapes import command as shape_command
 
@@ -20,7 +19,7 @@ VERSION = 3
 PICKLE_VERSIONS = "1 or 2"
 
 
-def write_restart(sim, path):
+def write_restart(sim, path, use="write_restart"):
     atom = sim.atom
     for h in sim.neighbor.histories:
         h.pack()
@@ -44,18 +43,7 @@ def write_restart(sim, path):
     }
     state = sim.comm.gather_restart(state)
     if sim.comm.me == 0:
-        tmp = f"{path}.tmp{os.getpid()}"
-        try:
-            restart_file.write(tmp, state, VERSION)
-            os.replace(tmp, path)
-        except BaseException as e:      # an error or an interrupt: never leave the temporary file
-            try:
-                os.unlink(tmp)
-            except OSError:
-                pass
-            if isinstance(e, OSError):
-                raise DemError(f"write_restart: cannot write '{path}': {e.strerror or e}") from None
-            raise
+        replace_file(path, lambda tmp: restart_file.write(tmp, state, VERSION), use)
 
 
 def load(path):
@@ -76,6 +64,7 @@ def read_restart(sim, path):
     state = load(path)
     if sim.domain.box_exist:
         raise DemError("read_restart: the box already exists (read_restart creates it)")
+    shape_command.check_restart(sim, state.get("shapes") or [])
     dom, atom, up, nb = sim.domain, sim.atom, sim.update, sim.neighbor
     dom.set_boundary(["".join(b) if b[0] != b[1] else b[0] for b in state["boundary"]])
     dom.set_box(state["lo"], state["hi"])
@@ -106,7 +95,7 @@ def read_restart(sim, path):
         nb.last_sort, nb.sort_every = ninfo["last_sort"], ninfo["sort_every"]
     else:
         nb.invalidate()
-    if state.get("shapes"):           # the shape table, unless the script defined it already
+    if state.get("shapes"):           # the shape table, unless the script defined the same already
         shape_command.rebuild(sim, state["shapes"])
     sim.modify.restart_states = dict(state["fixes"])
     sim.restart_pair_state = state["pair"]
@@ -136,8 +125,9 @@ class ReadRestart(Command):
 
     Restores box, particles (all fields, contact and wall histories), shapes, step, time, time step and
     neighbor state; fixes defined afterwards with the same IDs take their saved state back. Pair style,
-    coefficients and fixes are re-specified by the script, as in LAMMPS. With the same commands, the
-    continued run is bitwise identical to the uninterrupted one on one rank."""
+    coefficients and fixes are re-specified by the script, as in LAMMPS; shapes are not (shapes defined
+    before read_restart must be the restart's, the same in the same order, else an error names both).
+    With the same commands, the continued run is bitwise identical to the uninterrupted one on one rank."""
     style = "read_restart"
     usage = "file"
 

@@ -2,7 +2,6 @@
 input, registry, the shape table and the computes; every style receives the sim and reaches what it
 needs from it."""
 import math
-import os
 import sys
 
 import numpy as np
@@ -11,6 +10,7 @@ from .atom import Atom
 from .comm import make_comm
 from .domain import Domain
 from .errors import DemError
+from .files import open_output
 from .group import Groups
 from .input import Input
 from .modify import Modify
@@ -36,7 +36,17 @@ class Sim:
         self.registry = registry or default_registry()
         self.comm = comm or make_comm(self)
         self.screen = screen and self.comm.me == 0
-        self.logfile = open_log(log) if (log and self.comm.me == 0) else None
+        self.logfile = None
+        if log:       # rank 0 opens it and tells the others: one error on every rank, never one rank waiting
+            failure = None
+            if self.comm.me == 0:
+                try:
+                    self.logfile = open_log(log)
+                except DemError as e:
+                    failure = e
+            failure = self.comm.bcast(failure)
+            if failure is not None:
+                raise failure
         self._screen_lines = Lines(lambda text: print(text, flush=True))
         self._log_lines = Lines(self._log_write)
         self.atom = Atom()
@@ -183,13 +193,7 @@ class Lines:
 
 def open_log(path):
     """The log file, its folder created as dumps do; a clear error when it cannot be written."""
-    folder = os.path.dirname(path)
-    try:
-        if folder:
-            os.makedirs(folder, exist_ok=True)
-        return open(path, "w", encoding="utf-8")
-    except OSError as err:
-        raise DemError(f"cannot write the log file '{path}': {err.strerror}") from None
+    return open_output(path, "the log file (-log)")
 
 
 def fatal(sim, error):

@@ -1,13 +1,12 @@
 """write_data: the particles as a LAMMPS data file (atom_style sphere), so a dem state goes back to
 LAMMPS/LIGGGHTS, and comes back to dem through read_data with shaped particles intact."""
 import math
-import os
 
 import numpy as np
 
 from .shapes import command as shape_command
 from .command import Command
-from .errors import DemError
+from .files import atomic_write
 from .interrupt import SIGNAL_STATE
 
 
@@ -58,23 +57,7 @@ def write_data(sim, path):
     for k in range(n):
         v, w = d["v"][k], d["omega"][k]
         lines.append(f"{d['tag'][k]} " + " ".join(_num(c) for c in (*v, *w)))
-    text = "\n".join(lines) + "\n"
-    folder = os.path.dirname(path)
-    tmp = f"{path}.tmp{os.getpid()}"
-    try:
-        if folder:
-            os.makedirs(folder, exist_ok=True)
-        with open(tmp, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    except BaseException as e:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        if isinstance(e, OSError):
-            raise DemError(f"write_data: cannot write '{path}': {e.strerror or e}") from None
-        raise
+    atomic_write(path, "\n".join(lines) + "\n", "write_data")
 
 
 class WriteData(Command):

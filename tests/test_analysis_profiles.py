@@ -1,5 +1,8 @@
 """fix ave/profile: binned profiles of per-particle quantities (Descantes 2022 Figs. 7, 13, 16), against
 fields whose profile is known in closed form."""
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -237,3 +240,40 @@ region box block -1 1 -1 1 -1 1
 create_box 1 box
 fix p all ave/profile 1 1 {tmp_path / 'x.dat'} {args}
 """)
+
+
+BED = """units si
+boundary p p f
+region box block 0 0.01 0 0.01 0 0.01
+create_box 1 box
+create_atoms 1 random 20 5 box radius 0.0005 density 2500
+pair_style sphere
+pair_coeff * * kn 1000 en 0.5
+timestep 1e-6
+"""
+
+
+@pytest.mark.parametrize("lines, wrong, message", [
+    ("fix p all ave/profile 1 1 p.dat z 4 phi dx 1e-9\nrun 1\n", "fix p", "1e+21 grid points"),
+    ("fix p all ave/profile 1 1 p.dat z 4 phi resolution 1e7\nrun 1\n", "run", "grid points per evaluation"),
+    ("compute por all porosity box dx 1e-9\nthermo_style custom step c_por[1]\nrun 0\n", "run",
+     "compute por porosity: a grid spacing of 1e-09 makes 1e+21 grid points"),
+    ("fix p all ave/profile 1 1 p.dat z 1e9 count\nrun 1\n", "fix p", "NBIN must be in 1..1000000"),
+    ("fix p all ave/profile 1 1 p.dat z 4 count bounds nan 0.01\nrun 1\n", "fix p",
+     "bounds must be a finite number, got 'nan'"),
+    ("fix p all ave/profile 1 1 p.dat z 4 count bounds 0 inf\nrun 1\n", "fix p",
+     "bounds must be a finite number, got 'inf'"),
+], ids=["dx", "resolution", "porosity dx", "nbin", "bounds nan", "bounds inf"])
+def test_a_grid_or_bins_without_bound_are_refused(tmp_path, lines, wrong, message):
+    """An absurd spacing or bin count used to make a sample that never ends (a run no signal stops) or a
+    huge allocation; NaN bounds were taken. A subprocess, killed after 60 s: a regression never hangs."""
+    script = BED + lines
+    (tmp_path / "in.test").write_text(script)
+    try:
+        out = subprocess.run([sys.executable, "-m", "dem", "-in", "in.test", "-log", "none"], cwd=tmp_path,
+                             capture_output=True, text=True, timeout=60)
+    except subprocess.TimeoutExpired:
+        pytest.fail("the run did not end")
+    line = next(i for i, text in enumerate(script.splitlines(), 1) if text.startswith(wrong))
+    assert out.returncode == 1 and "Traceback" not in out.stderr, out.stderr
+    assert f"in.test:{line}: " in out.stderr and message in out.stderr, out.stderr

@@ -133,7 +133,7 @@ def test_log_in_a_missing_folder_is_created_and_an_unwritable_one_is_an_error(tm
     out = subprocess.run([sys.executable, "-m", "dem", "-in", "in.test", "-log", "file/log.test"],
                          capture_output=True, text=True, cwd=tmp_path)
     assert out.returncode == 1 and "Traceback" not in out.stderr
-    assert "cannot write the log file 'file/log.test'" in out.stderr
+    assert "the log file (-log): cannot write 'file/log.test'" in out.stderr
 
 
 def test_foreign_files_are_not_restart_files(tmp_path):

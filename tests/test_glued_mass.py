@@ -401,7 +401,7 @@ def test_cache_ignores_tampered_and_foreign_entries(tmp_path):
 
 def test_corrupt_file_warns_and_recomputes(tmp_path):
     path = tmp_path / "shapes.h5"
-    path.write_bytes(b"not an hdf5 file" * 10)
+    path.write_bytes(b"\x89HDF\r\n\x1a\n" + b"damaged" * 10)      # an HDF5 file, damaged
     db = shape_db.ShapeDB(path)
     with pytest.warns(shape_db.ShapeDBWarning, match="unreadable"):
         p = shape_db.cached_union_mass_properties(_comps(), 30, db=db)
@@ -410,6 +410,16 @@ def test_corrupt_file_warns_and_recomputes(tmp_path):
         warnings.simplefilter("error")
         assert shape_db.cached_union_mass_properties(_comps(), 30, db=db)["cached"] is True
     assert os.path.exists(str(path) + ".corrupt")
+
+
+def test_a_file_that_is_not_hdf5_is_left_as_it_is(tmp_path):
+    path = tmp_path / "shapes.h5"
+    path.write_bytes(b"somebody's notes")
+    db = shape_db.ShapeDB(path)
+    with pytest.warns(shape_db.ShapeDBWarning) as caught:           # unreadable, then not written
+        assert shape_db.cached_union_mass_properties(_comps(), 30, db=db)["cached"] is False
+    assert any("not an HDF5 file: left as it is" in str(w.message) for w in caught)
+    assert path.read_bytes() == b"somebody's notes" and not os.path.exists(str(path) + ".corrupt")
 
 
 def test_default_path_and_disabling(tmp_path, monkeypatch):

@@ -10,6 +10,7 @@ every step. A run continued on the same number of ranks from its restart is bitw
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import h5py
@@ -252,6 +253,22 @@ def test_error_on_one_rank_only_aborts_the_job(tmp_path):
     assert res.returncode != 0
     assert "in.log.e:13: write_restart: cannot write 'no_such_folder/bed.restart'" in res.stderr, res.stderr
     assert "the other ranks did not stop with this error: aborting the MPI job" in res.stderr, res.stderr
+
+
+def test_a_log_that_cannot_be_written_ends_every_rank(tmp_path):
+    """Rank 0 alone opens the log: its failure (here a file where the log's folder should be) used to leave
+    rank 1 waiting in its first collective (create_box) for ever. Now every rank stops with the error."""
+    (tmp_path / "blocker").write_text("")
+    (tmp_path / "in.x").write_text(ONE_RANK_ERROR)
+    start = time.monotonic()
+    try:
+        res = subprocess.run([MPIEXEC, "-n", "2", sys.executable, "-m", "dem", "-in", "in.x", "-log", "blocker/log"],
+                             cwd=tmp_path, env=_env(), capture_output=True, text=True, timeout=30)
+    except subprocess.TimeoutExpired:
+        pytest.fail("a log that cannot be written hung the job")
+    assert time.monotonic() - start < 10
+    assert res.returncode == 1 and "Traceback" not in res.stderr, res.stderr
+    assert "the log file (-log): cannot write 'blocker/log': 'blocker' is not a folder" in res.stderr, res.stderr
 
 
 def test_serial_run_does_not_import_mpi4py(tmp_path):

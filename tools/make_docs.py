@@ -24,6 +24,16 @@ INTERPRETER = """### Interpreter commands
 comparisons, && || !, functions sqrt exp ln log abs sin cos tan asin acos atan atan2 floor ceil round min max,
 PI, `v_name` and thermo keywords (`step`, `atoms`, `ke`, `xhi` ...). Comments start with `#`; a line ending
 in `&` continues on the next.
+
+### Output files
+Every file dem writes (the log, dumps, `write_data`, `write_restart`, `restart`, `print ... file`,
+`fix print/series`, `fix ave/profile`, `fix ave/vector`, the shape database) is a regular file, its folder
+created when missing (restarts excepted). A name that exists and is anything else (a device such as
+`/dev/null`, a FIFO, a socket, a folder, or a symbolic link to one) is refused with an error naming the
+line and the file (`$DEM_SHAPE_DB` there: a warning, and no cache). Most files are written to a temporary
+file renamed over the old one, which would replace a device, and a FIFO would block the run until a
+reader comes. A symbolic link to a regular file is kept and the file it names written. Turn an output
+off instead (`-log none`, no dump, `restart 0`).
 """
 
 

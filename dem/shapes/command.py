@@ -269,8 +269,9 @@ class ShapeCommand(Command):
     Particles get a shape with `create_atoms ... shape NAME [scale S] [quat ...]` or
     `set ... shape NAME [scale S]`; `scale` makes size distributions of one shape. Use
     `fix ID all nve/shape` to integrate them and `pair_style convex/gjk` for their contacts. Particles
-    store the index of their shape: a script continuing from `read_restart` defines the same shapes in
-    the same order (as it re-specifies pair styles and fixes).
+    store the index of their shape: `read_restart` restores the shapes of the restart, so a script
+    continuing from it defines none before it (shapes defined before it must be the restart's, the same
+    in the same order, else read_restart is an error naming both; new shapes may follow it).
 
     Example (Part III sec 3.3)::
 
@@ -327,8 +328,36 @@ class ShapeCommand(Command):
                   f"{' '.join(f'{m:.6g}' for m in shape.principal_moments)}")
 
 
+def check_restart(sim, definitions):
+    """DemError when the script defined shapes before read_restart that are not the restart's, the same in
+    the same order: saved particles hold row indices, and another row there would give them another
+    shape. Rows the script defined beyond the restart's are kept."""
+    here = table(sim).definitions
+    if not here:
+        return
+    for k, saved in enumerate(definitions):
+        mine = here[k] if k < len(here) else None
+        if mine is None or not _same_words(mine, saved):
+            defined = f"'shape {' '.join(mine)}'" if mine else "no shape"
+            raise DemError(f"read_restart: shape {k + 1} of the restart is 'shape {' '.join(saved)}', but the "
+                           f"script defined {defined} in its place before read_restart",
+                           hint="define no shape before read_restart (it restores the restart's shapes), or the "
+                                "same ones in the same order")
+
+
+def _same_words(a, b):
+    """The same definition: the same words, numbers compared by value (0.002 is 2e-3)."""
+    def value(word):
+        try:
+            return float(word)
+        except ValueError:
+            return word
+    return len(a) == len(b) and all(x == y or value(x) == value(y) for x, y in zip(a, b))
+
+
 def rebuild(sim, definitions):
-    """Re-run shape definitions (from a restart) when the script has not defined them."""
+    """Re-run shape definitions (from a restart) when the script has not defined them (check_restart has
+    made sure that those it defined are the restart's)."""
     if len(table(sim)):
         return
     cmd = ShapeCommand(sim)

@@ -14,8 +14,11 @@ component's inradius). Overlapping components make the mass properties come from
 integration at `resolution` points along the longest side (default 500, Part III sec 2.3), cached in the
 shape database `db` (default $DEM_SHAPE_DB, else ~/.cache/dem/shapes.h5; `none`: no cache).
 """
+import os
+
 import numpy as np
 
+from ..files import check_target
 from . import glued_builtins as gb
 from .convex_kinds import SHAPE_KINDS
 from .glued import DEFAULT_RESOLUTION, Glued
@@ -63,6 +66,8 @@ class GluedKind:
             if not 8 <= resolution <= 5000:
                 raise a.error(f"resolution must be in 8..5000, got {resolution}")
         db = opts.get("db", [None])[0]
+        if db is not None and db.strip().lower() != "none":
+            check_target(os.path.expanduser(db), f"{a.what}: db")
         try:
             comps = make()
             return Glued(comps, resolution=resolution, db=db, comm=self.sim.comm, name=self.style)

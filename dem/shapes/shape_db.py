@@ -12,18 +12,22 @@ version and a sha256 checksum of those and of the stored numbers; it is used onl
 exactly, so a hash collision, a stale entry (older algorithm), a foreign or a tampered entry is never used
 (it is recomputed and replaced). A file that cannot be read gives a warning and the properties are
 recomputed; writing goes to a temporary file renamed over the old one (atomic on POSIX), under an
-advisory lock, and under MPI only rank 0 writes (``cached_union_mass_properties`` broadcasts).
+advisory lock, and under MPI only rank 0 writes (``cached_union_mass_properties`` broadcasts). A path that
+is not a regular file (a device, a FIFO: ``dem.files``) is neither read nor written (a warning); an
+unreadable HDF5 file is moved aside to ``PATH.corrupt``, any other file is left as it is and nothing is
+stored in it.
 
 Path: ``ShapeDB(path)``; ``default_db()`` uses the environment variable ``DEM_SHAPE_DB`` if set, else
 ``~/.cache/dem/shapes.h5``; the value ``none`` disables the cache.
 """
 import hashlib
 import os
-import tempfile
 import warnings
 
 import numpy as np
 
+from ..errors import DemError
+from ..files import check_target, replace_file
 from .base import KIND_NAMES, MARGIN, POLYHEDRON
 
 __all__ = ["ShapeDB", "definition_text", "default_db", "cached_union_mass_properties", "ALGORITHM_VERSION",
@@ -91,8 +95,18 @@ class ShapeDB:
     def _warn(self, msg):
         warnings.warn("shape database %s: %s" % (self.path, msg), ShapeDBWarning, stacklevel=3)
 
+    def _regular(self):
+        """False, with a warning, when the path names a device, a FIFO, a folder... (opening a FIFO would
+        block; replacing a device would destroy it)."""
+        try:
+            check_target(self.path, "shape database")
+        except DemError as e:
+            warnings.warn(str(e), ShapeDBWarning, stacklevel=3)
+            return False
+        return True
+
     def get(self, definition, resolution):
-        if not os.path.exists(self.path):
+        if not os.path.exists(self.path) or not self._regular():
             return None
         import h5py
         key = _key(definition, resolution)
@@ -130,33 +144,35 @@ class ShapeDB:
         import h5py
         key = _key(definition, resolution)
         arrays = _props_arrays(props)
-        directory = os.path.dirname(self.path)
+
+        def write(tmp):
+            with h5py.File(tmp, "w") as out:
+                self._copy_entries(out, skip=key)
+                g = out.require_group("entries").create_group(key)
+                g.attrs["definition"] = definition
+                g.attrs["resolution"] = int(resolution)
+                g.attrs["version"] = ALGORITHM_VERSION
+                g.attrs["checksum"] = _checksum(definition, resolution, ALGORITHM_VERSION, arrays)
+                for name in _FIELDS:
+                    g.create_dataset(name, data=arrays[name])
+
+        if not self._regular():      # before the lock file is made beside it
+            return False
         try:
-            os.makedirs(directory, exist_ok=True)
+            os.makedirs(os.path.dirname(self.path), exist_ok=True)
             with _Lock(self.path + ".lock"):
-                fd, tmp = tempfile.mkstemp(prefix=".shapes-", suffix=".h5", dir=directory)
-                os.close(fd)
-                try:
-                    with h5py.File(tmp, "w") as out:
-                        self._copy_entries(out, skip=key)
-                        g = out.require_group("entries").create_group(key)
-                        g.attrs["definition"] = definition
-                        g.attrs["resolution"] = int(resolution)
-                        g.attrs["version"] = ALGORITHM_VERSION
-                        g.attrs["checksum"] = _checksum(definition, resolution, ALGORITHM_VERSION, arrays)
-                        for name in _FIELDS:
-                            g.create_dataset(name, data=arrays[name])
-                    os.replace(tmp, self.path)
-                finally:
-                    if os.path.exists(tmp):
-                        os.unlink(tmp)
+                replace_file(self.path, write, "shape database")
+        except DemError as e:
+            self._warn("not written (%s)" % e)
+            return False
         except Exception as e:
             self._warn("not written (%s: %s)" % (type(e).__name__, e))
             return False
         return True
 
     def _copy_entries(self, out, skip):
-        """Copy the readable entries of the current file into ``out`` (a corrupt file is set aside)."""
+        """Copy the readable entries of the current file into ``out`` (a corrupt HDF5 file is set aside; any
+        other file is not ours to move: DemError)."""
         if not os.path.exists(self.path):
             return
         import h5py
@@ -173,9 +189,16 @@ class ShapeDB:
                         except Exception:
                             pass
         except Exception as e:
+            if not _hdf5_signature(self.path):
+                raise DemError("'%s' is not an HDF5 file: left as it is" % self.path) from None
             aside = self.path + ".corrupt"
             self._warn("unreadable (%s); moved to %s and started anew" % (e, aside))
             os.replace(self.path, aside)
+
+
+def _hdf5_signature(path):
+    with open(path, "rb") as fh:
+        return fh.read(8) == b"\x89HDF\r\n\x1a\n"
 
 
 class _Lock:

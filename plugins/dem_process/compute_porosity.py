@@ -9,6 +9,21 @@ from dem.thermo import quat_to_matrix
 
 from . import _compute_porosity
 
+# One evaluation of a grid runs without a break (about 1e7 points/s on one core): a grid of more points
+# than this (about 20 minutes) is a mistake in dx or the resolution, not a measurement.
+MAX_POINTS = 1e10
+
+
+def grid_counts(extent, dx, what, copies=1):
+    """Points per axis (at least 1) of a grid of spacing dx across `extent`, evaluated `copies` times per
+    evaluation; a DemError naming `what` when that makes more than MAX_POINTS points."""
+    counts = np.maximum(np.rint(np.asarray(extent, float) / dx), 1.0)
+    total = copies * float(np.prod(counts))
+    if not total <= MAX_POINTS:
+        raise DemError(f"{what}: a grid spacing of {dx:.6g} makes {total:.3g} grid points per evaluation, more "
+                       f"than {MAX_POINTS:.0e}", hint="give a larger dx (or a smaller resolution)")
+    return counts.astype(np.int64)
+
 
 def polyhedron_planes(sim):
     """Face planes of the polyhedron rows of the shape table (the voxel kernel's point-in-body test):
@@ -69,7 +84,8 @@ class ComputePorosity(Compute):
 
     The cost grows as the number of points (K^3 per cubic diameter; about 1e7 points/s on one core):
     evaluate it once at the end
-    (e.g. `run 0` with it in thermo) rather than at every thermo line. In parallel runs every rank
+    (e.g. `run 0` with it in thermo) rather than at every thermo line; a grid of more than 1e10 points
+    is refused. In parallel runs every rank
     gathers the group's particles and counts a share of the grid layers.
 
     Example (Part III Table 5): `compute por all porosity bulk` then `thermo_style custom step c_por`."""
@@ -113,7 +129,7 @@ class ComputePorosity(Compute):
                 raise DemError(f"compute {self.id} porosity: no particle in group {self.group} to set the "
                                f"grid spacing (give dx)")
             dx = 2.0 * rmin / self.resolution
-        npts = np.maximum(np.rint((hi - lo) / dx), 1).astype(np.int64)
+        npts = grid_counts(hi - lo, dx, f"compute {self.id} porosity")
         return lo, (hi - lo) / npts, npts
 
     def _region_params(self):

@@ -1,8 +1,9 @@
 """dump png"""
 import os
 
-from dem.dump import Dump, ensure_dir
+from dem.dump import Dump
 from dem.errors import DemError
+from dem.files import check_target, ensure_dir
 
 from ._common import find_drum, up_direction
 from .render import render_cross_section
@@ -89,6 +90,7 @@ class DumpPNG(Dump):
     def write_frame(self, frame):
         axis, centre, rdrum = self.view()
         path = self.path.replace("*", str(frame.step))
+        check_target(path, f"dump {self.id}")
         ensure_dir(path)
         title = f"step {frame.step}   t = {frame.time:.4g} s"
         drum = self.sim.modify.find(self.drum_id) if self.drum_id else None

@@ -1,13 +1,17 @@
 """fix ave/profile"""
 import numpy as np
 
+from dem.args import float_error, integer, number
 from dem.errors import DemError
 from dem.fix import Fix, Stage
 
 from . import profile_bins as pb
 from .analysis import axis_index, selection
-from .compute_porosity import gather_bodies, solid_points
+from .compute_porosity import gather_bodies, grid_counts, solid_points
 from .series_file import SeriesFile, sample_step
+
+
+MAX_BINS = 10**6      # more than any profile can fill; the per-bin sums are held in memory
 
 
 class FixAveProfile(Fix):
@@ -15,8 +19,8 @@ class FixAveProfile(Fix):
     fix ID group ave/profile Nevery Nfreq FILE radial NBIN value ... cylinder A C1 C2 [bounds LO HI] [kinetic yes|no]
 
     Profiles along an axis, time-averaged and written to a file (LAMMPS's `compute chunk/atom bin/1d` with
-    `fix ave/chunk`, in one fix): the group's particles are binned by their centre in NBIN slabs of equal
-    width across [LO, HI) along AXIS (x, y or z; default the box bounds when the fix is defined); every
+    `fix ave/chunk`, in one fix): the group's particles are binned by their centre in NBIN (at most 1e6)
+    slabs of equal width across [LO, HI) (finite numbers) along AXIS (x, y or z; default the box bounds when the fix is defined); every
     Nevery steps a sample is taken, and every Nfreq steps (a multiple of Nevery) the average of the samples
     since the last write is written, one line per bin. A bin's volume is its width times the box's cross-
     section (Descantes' L_x L_y dz).
@@ -39,6 +43,8 @@ class FixAveProfile(Fix):
       glued piece: the voxel test of `compute porosity`), grid spacing D (`dx`) or the smallest particle
       diameter of the group / K (`resolution`, default 20); Descantes uses Monte Carlo shots (Fig. 7), a
       regular grid gives the same mean without noise. It costs a grid pass per sample (~1e7 points/s);
+      a grid of more than 1e10 points per sample (all slabs) is refused (at the fix line for `dx`, at
+      the first sample for `resolution`);
     * `sxx syy szz sxy sxz syz p`: stress of the slab (Descantes eq. 12, as `compute stress`): -sym(sum of
       F (x) (P - G)) over the contacts of the bin's particles, divided by the bin volume, compression
       positive, p the mean normal stress; `kinetic yes` adds sum m v' v' per bin volume, v' about the bin's
@@ -78,8 +84,8 @@ class FixAveProfile(Fix):
         self.radial = args[3] == "radial"
         self.axis = None if self.radial else axis_index(args[3], what)
         self.nbin = _int(args[4], "NBIN", what)
-        if self.nbin < 1:
-            raise DemError(f"{what}: NBIN must be >= 1")
+        if not 1 <= self.nbin <= MAX_BINS:
+            raise DemError(f"{what}: NBIN must be in 1..{MAX_BINS}, got {self.nbin}")
         self.values, kw, i = [], {}, 5
         opts = {"bounds": 2, "kinetic": 1, "dx": 1, "resolution": 1, "cylinder": 3}
         while i < len(args):
@@ -142,6 +148,8 @@ class FixAveProfile(Fix):
         self.centres = self.lo + (np.arange(self.nbin) + 0.5) * self.width
         self.acc = np.zeros((self.nbin, pb.WIDTH))
         self.last = None
+        if "phi" in self.values and self.dx is not None:
+            self._grid(self.dx)           # an absurd dx is refused here, not when the first sample never ends
         self.file = SeriesFile(sim, path, what, "# step time bin coord " + " ".join(self.values))
         where = (f"radial about {'xyz'[self.cylinder.axis]} through ({', '.join(f'{c:.10g}' for c in self.cylinder.centre)})"
                  if self.radial else f"axis {'xyz'[self.axis]}")
@@ -157,6 +165,13 @@ class FixAveProfile(Fix):
             return np.pi * np.diff(edges * edges) * prd[self.cylinder.axis]
         return self.width * float(np.prod([prd[d] for d in range(3) if d != self.axis]))
 
+    def _grid(self, dx):
+        """(points per axis, spacing) of the phi grid of one slab, spacing about dx."""
+        prd = np.asarray(self.sim.domain.prd, float).copy()
+        prd[self.axis] = self.width
+        npts = grid_counts(prd, dx, f"fix {self.id} ave/profile: phi", copies=self.nbin)
+        return npts, prd / npts
+
     def _solid_fraction(self, sel):
         """phi per bin: one grid pass per slab, the grid across the box's cross-section."""
         sim = self.sim
@@ -169,10 +184,8 @@ class FixAveProfile(Fix):
                 return np.zeros(self.nbin)
             dx = 2.0 * rmin / self.resolution
         lo = np.asarray(dom.lo, float).copy()
-        prd = np.asarray(dom.prd, float).copy()
-        lo[self.axis], prd[self.axis] = self.lo, self.width
-        npts = np.maximum(np.rint(prd / dx), 1).astype(np.int64)
-        h = prd / npts
+        lo[self.axis] = self.lo
+        npts, h = self._grid(dx)
         phi = np.zeros(self.nbin)
         bodies = gather_bodies(sim, sel)
         for k in range(self.nbin):
@@ -220,13 +233,13 @@ class FixAveProfile(Fix):
 
 def _int(word, name, what):
     try:
-        return int(word)
+        return integer(word)
     except ValueError:
         raise DemError(f"{what}: {name} must be an integer, got '{word}'") from None
 
 
 def _float(word, name, what):
     try:
-        return float(word)
+        return number(word)
     except ValueError:
-        raise DemError(f"{what}: {name} must be a number, got '{word}'") from None
+        raise DemError(f"{what}: {float_error(word, name)}") from None

@@ -2,6 +2,7 @@
 import os
 
 from dem.errors import DemError
+from dem.files import check_target, open_output
 from dem.fix import Fix, Stage
 
 
@@ -60,15 +61,10 @@ class FixPrintSeries(Fix):
         self.fmt = fmt
         self.last_step = None
         self.fh = None
+        check_target(self.path, f"fix {fid} print/series")     # on every rank: all refuse it together
         if sim.comm.me == 0:
-            folder = os.path.dirname(self.path)
-            try:
-                if folder:
-                    os.makedirs(folder, exist_ok=True)
-                exists = append and os.path.exists(self.path)
-                self.fh = open(self.path, "a" if append else "w")
-            except OSError as e:
-                raise DemError(f"fix {fid} print/series: cannot open '{self.path}': {e.strerror}") from None
+            exists = append and os.path.exists(self.path)
+            self.fh = open_output(self.path, f"fix {fid} print/series", "a" if append else "w")
             if not exists:
                 self.fh.write("# step time " + " ".join(words) + "\n")
                 self.fh.flush()

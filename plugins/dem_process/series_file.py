@@ -1,8 +1,6 @@
 """The output file of an averaging fix (ave/profile, ave/vector): opened on rank 0 when the fix is
 defined (replaced), a header line, blocks of lines flushed at each write."""
-import os
-
-from dem.errors import DemError
+from dem.files import check_target, open_output
 
 
 def sample_step(fix):
@@ -19,15 +17,10 @@ class SeriesFile:
     def __init__(self, sim, path, what, header):
         self.fh = None
         self.path = path
+        check_target(path, what)     # on every rank: all refuse it together
         if sim.comm.me != 0:
             return
-        try:
-            folder = os.path.dirname(path)
-            if folder:
-                os.makedirs(folder, exist_ok=True)
-            self.fh = open(path, "w")
-        except OSError as e:
-            raise DemError(f"{what}: cannot open '{path}': {e.strerror}") from None
+        self.fh = open_output(path, what)
         self.header = header
 
     def comment(self, line):
