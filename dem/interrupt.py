@@ -6,8 +6,16 @@ leaving a collective alone would hang the others. The run loop reads the flag on
 a reduction it makes anyway (`Update.check_step`), so every rank stops at the end of the same step.
 Anywhere else a signal raises `Interrupted` at once. Exit status 128 + signal number (130, 143), as a
 shell reports a process killed by it.
+
+The `dem` command takes the signals in a thread of its own (`Signals.install`): Python runs a handler only
+between bytecodes of the main thread, so a signal sent while a kernel or a numpy call is busy would wait
+for it. The thread passes the first signal to the main thread (as if it had arrived there) and says so on
+the screen; a second one before the first was acted on ends the process at once (as Ctrl-C twice does in
+LAMMPS): the outputs written so far are whole (atomic files, flushed lines), the step in progress is lost.
 """
+import _thread
 import contextlib
+import os
 import signal
 import threading
 
@@ -44,6 +52,7 @@ class Signals:
         self.pending = 0
         self.depth = 0
         self.installed = False     # handlers set for the whole process (the `dem` command)
+        self.delivered = 0         # signals the thread passed on that the main thread has not acted on
 
     def handler(self, signum, frame):
         if not self.pending:
@@ -54,18 +63,35 @@ class Signals:
     def raise_pending(self):
         signum, self.pending = self.pending, 0
         if signum:
+            self.delivered = 0
             raise Interrupted(signum)
 
     def take(self):
         """The pending signal (0: none), now acted on."""
         signum, self.pending = self.pending, 0
+        self.delivered = 0
         return signum
 
     def install(self):
-        """The `dem` command: every SIGINT / SIGTERM of the process goes through the handler."""
+        """The `dem` command: every SIGINT / SIGTERM of the process goes to a thread waiting for them
+        (blocked in the others), which passes them to the handler in the main thread."""
         for s in SIGNALS:
             signal.signal(s, self.handler)
+        signal.pthread_sigmask(signal.SIG_BLOCK, SIGNALS)
+        threading.Thread(target=self._wait, name="dem-signals", daemon=True).start()
         self.installed = True
+
+    def _wait(self):
+        while True:
+            signum = signal.sigwait(SIGNALS)
+            name = signal_name(signum)
+            if self.delivered:
+                os.write(2, f"\nINTERRUPTED: a second {name}: stopped at once, in the middle of a step; "
+                            "the files written before it are whole\n".encode())
+                os._exit(128 + signum)
+            self.delivered = signum
+            os.write(2, f"\n{name}: stopping at the end of this step ({name} again: at once)\n".encode())
+            _thread.interrupt_main(signum)
 
     @contextlib.contextmanager
     def deferred(self):

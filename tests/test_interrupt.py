@@ -151,3 +151,44 @@ def test_library_run_stops_at_a_step_end_and_restores_handlers():
     assert "the run stopped at the end of step 8 (8 of 100 steps)" in str(info.value)
     assert signal.getsignal(signal.SIGINT) is before
     sim.close()
+
+
+STUCK = """
+import ctypes
+import dem
+from dem.interrupt import SIGNAL_STATE
+SIGNAL_STATE.install()                    # as the dem command does
+sim = dem.Simulation(screen=False, log="log.dem")
+sim.callback("stuck", lambda sim: (print("stuck", flush=True), ctypes.CDLL(None).sleep(600)))
+sim.commands('''units si
+region box block 0 0.01 0 0.01 0 0.01
+create_box 1 box
+create_atoms 1 single 0.005 0.005 0.005 radius 0.001 density 2500
+fix integ all nve/sphere
+timestep 1e-5
+thermo 1
+fix s all python/every 3 stuck
+run 100''')
+"""
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
+def test_a_second_signal_stops_a_stuck_step_at_once(tmp_path, signum):
+    """A step that does not end (here a C call of 600 s inside it, the GIL released as dem's kernels
+    release it): the first signal waits for the end of the step and says so; the second ends the
+    process within a second, exit status 128 + signal, the log's lines so far on disk."""
+    (tmp_path / "stuck.py").write_text(STUCK)
+    proc = subprocess.Popen([sys.executable, "stuck.py"], cwd=tmp_path, env=_env(), stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    assert proc.stdout.readline().strip() == "stuck"
+    proc.send_signal(signum)
+    time.sleep(1.0)
+    assert proc.poll() is None                       # the first signal waits for the step
+    sent = time.monotonic()
+    rc, out, err = stop(proc, signum, timeout=30)
+    assert time.monotonic() - sent < 1.0, "the second signal did not stop the process at once"
+    name = signal.Signals(signum).name
+    assert rc == 128 + signum, err
+    assert f"{name}: stopping at the end of this step ({name} again: at once)" in err
+    assert f"INTERRUPTED: a second {name}: stopped at once" in err and "Traceback" not in err
+    assert "\n         2 " in (tmp_path / "log.dem").read_text()    # the thermo line before the stuck step

@@ -78,7 +78,9 @@ class Run(Command):
     restart were written, and `dem` exits with status 130 (SIGINT) or 143 (SIGTERM). A signal outside a
     run (while the script is read) ends `dem` at once with the same status; one during `write_restart`
     waits for the file. Called from Python, `sim.run` raises `dem.interrupt.Interrupted` (a
-    KeyboardInterrupt) after such a stop."""
+    KeyboardInterrupt) after such a stop. A second signal before the first was acted on (a step that
+    does not end) stops `dem` at once, with the same status: the files written before are whole, the
+    step in progress is lost."""
     style = "run"
     usage = "N [upto] [start S] [stop S] [pre yes|no] [post yes|no] [every M c1 c2 ...]"
 
