@@ -202,7 +202,8 @@ def test_lattice_on_one_and_two_ranks(tmp_path):
     z_iso = 6 exactly, sigma_xx = 64 kn delta 0.999 / V (64 contacts, branch 0.999), sigma_yy and shear 0,
     to round-off (bound 1e-9), on 1 rank and on 2 (cut across x, the contact direction: ghost tallies
     come back to their owners on the other rank through the MPI reverse communication)."""
-    from test_mpi import MPIEXEC, run_dem, thermo_rows
+    from conftest import MPIEXEC
+    from test_mpi import run_dem, thermo_rows
     expect = 64 * KN * 1e-3 * 0.999 / (3.996 * 4.8 * 4.8)
     atoms = "\n".join(f"create_atoms 1 single {float((i + 0.5) * 0.999)!r} {float((j + 0.5) * 1.2)!r} "
                       f"{float((k + 0.5) * 1.2)!r} shape c density 1"

@@ -18,7 +18,8 @@ import numpy as np
 import pytest
 
 import dem
-from test_mpi import MPIEXEC, frame, run_dem, thermo_rows
+from conftest import MPIEXEC
+from test_mpi import frame, run_dem, thermo_rows
 
 BEAM = 0.002
 BED = """

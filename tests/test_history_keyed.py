@@ -15,7 +15,8 @@ from dem import history as history_module
 from dem.errors import DemError
 from dem.history import KeyedHistory
 
-from test_mpi import MPIEXEC, _env
+from conftest import MPIEXEC
+from test_mpi import _env
 
 WIDTH = 3
 # a simple cubic lattice of spheres 0.1 apart: each one listed with its 6 nearest neighbors, no contact

@@ -14,7 +14,8 @@ import pytest
 import dem
 
 h5py = pytest.importorskip("h5py")
-from test_mpi import MPIEXEC, _env   # noqa: E402  (the same launch as the MPI tests)
+from conftest import MPIEXEC  # noqa: E402
+from test_mpi import _env   # noqa: E402  (the same launch as the MPI tests)
 
 FIELDS = {"id", "type", "position", "velocity", "omega", "orientation", "radius", "mass", "shape"}
 
