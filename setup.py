@@ -89,7 +89,7 @@ setup(
     ext_modules=[extension(p) for p in pyx],
     cmdclass={"build_ext": KernelsBuild},
     install_requires=["numpy>=1.24", "h5py", "pluggy>=1.0", "scipy", "matplotlib"],
-    extras_require={"mpi": ["mpi4py", "mpich"], "test": ["pytest", "mpi4py", "mpich", "vtk", "ovito", "coal", "setuptools>=64", "wheel"]},
+    extras_require={"mpi": ["mpi4py", "mpich"], "test": ["pytest", "mpi4py", "mpich", "vtk", "ovito", "coal", "gsd", "setuptools>=64", "wheel"]},
     entry_points={
         "console_scripts": ["dem = dem.cli:main", "dem-plot = dem.tools.plot_series:main",
                             "dem-frames = dem.tools.drum_frames:main",

@@ -4,6 +4,7 @@ from .commands import COMMANDS
 from .compute import COMMANDS as COMPUTE_COMMANDS
 from .create_atoms import CreateAtoms, SetCommand
 from .dump_custom import DumpCustom
+from .dump_gsd import DumpGSD
 from .dump_h5 import DumpH5
 from .dump_vtk import DumpVTK
 from .dump_vtp import DumpVTP
@@ -20,4 +21,4 @@ from .write_data import WriteData
 @hookimpl
 def dem_styles():
     return (COMMANDS + COMPUTE_COMMANDS + [CreateAtoms, SetCommand, ReadData, WriteData] + RESTART_COMMANDS
-            + REGIONS + INTEGRATORS + PYTHON_FIXES + BALANCE_STYLES + SHAPE_STYLES + [DumpH5, DumpVTK, DumpVTP, DumpCustom])
+            + REGIONS + INTEGRATORS + PYTHON_FIXES + BALANCE_STYLES + SHAPE_STYLES + [DumpH5, DumpVTK, DumpVTP, DumpCustom, DumpGSD])

@@ -25,7 +25,8 @@ class DumpVTP(DumpVTK):
     OVITO's Aspherical Shape) and ``blockiness1 blockiness2`` (Superquadric Roundness) for the shapes OVITO
     can draw: boxes (blockiness 200, i.e. almost sharp), ellipsoids and superquadrics (their exponents
     n1, n2); other shapes (polyhedra, cylinders, cones, composites) and spheres have zero half sizes, so
-    OVITO draws them as spheres of their radius: use ``dump vtk`` in ParaView for their true surfaces.
+    OVITO draws them as spheres of their radius: ``dump gsd`` gives OVITO every shape as it is (and
+    ``dump vtk`` ParaView).
 
     Example::
 

@@ -35,6 +35,7 @@ CASES = [
     ("dump vtp pvd", "dump d all vtp 10 p_*.vtp pvd T\nrun 10\n", "t.pvd", "dump d"),
     ("dump vtp *", "dump d all vtp 10 t_*.vtp\nrun 10\n", "t_10.vtp", "run"),
     ("dump h5", "dump d all h5 10 T\nrun 10\n", "t.h5", "dump d"),
+    ("dump gsd", "dump d all gsd 10 T\nrun 10\n", "t.gsd", "dump d"),
     ("dump h5 xdmf", "dump d all h5 10 t.h5\nrun 10\n", "t.xdmf", "dump d"),
     ("dump png *", "dump d all png 10 t_*.png\nrun 10\n", "t_10.png", "run"),
     ("print file", "print hello file T\n", "t.10", "print"),
