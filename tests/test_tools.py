@@ -7,6 +7,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import dem
@@ -75,3 +76,34 @@ def test_plot_series_script(outputs):
     res = run([console_script("dem-plot"), str(outputs / "d.dat"), "-o", str(outputs / "s.png")], cwd=outputs)
     assert res.returncode == 0, res.stderr[-2000:]
     assert (outputs / "s.png").exists()
+
+
+def test_frames_draw_the_dumps_shapes_as_dump_png_does(tmp_path, monkeypatch):
+    """dem-frames takes the shape table the HDF5 dump holds: the outlines it draws are those dump png
+    draws from the simulation's own table (the same renderer; each composite's convex pieces are the
+    connected parts of its stored mesh), to round-off."""
+    from dem.tools import drum_frames
+    from dem_process.render import shaped_polygons, view_basis
+    monkeypatch.chdir(tmp_path)
+    sim = dem.Simulation(screen=False)
+    sim.commands("""boundary p p f
+        region box block 0 0.03 0 0.03 0 0.03
+        create_box 1 box
+        shape x cross3d 0.004 aspect 4
+        shape t tetrahedron 0.004
+        create_atoms 1 single 0.008 0.015 0.015 shape x quat 0.9 0.3 0.2 0.1 density 2500
+        create_atoms 1 single 0.022 0.015 0.015 shape t scale 1.5 quat 0.8 0.1 0.5 0.3 density 2500
+        timestep 1e-6
+        dump h all h5 1 d.h5
+        run 0""")
+    sim.close()
+    step, _, arrays = drum_frames.read_frames("d.h5")[-1]
+    stored = drum_frames.read_shapes("d.h5")
+    args = (arrays["shape"], arrays["position"] - 0.015, arrays["orientation"], arrays["radius"], view_basis(1))
+    owners, polygons = shaped_polygons(stored, *args)
+    owners_sim, polygons_sim = shaped_polygons(sim.shapes, *args)
+    assert owners.tolist() == owners_sim.tolist() == [0, 0, 0, 1]        # three beams, one tetrahedron
+    for a, b in zip(polygons, polygons_sim):
+        np.testing.assert_allclose(a, b, atol=1e-15)
+    drum_frames.main(["d.h5", "--radius", "0", "--size", "200"])
+    assert (tmp_path / f"d_{step}.png").exists()

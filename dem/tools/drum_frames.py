@@ -7,7 +7,9 @@ axis, coloured by translational velocity magnitude from blue (0) to red (vmax), 
 (also `python -m dem.tools.drum_frames ...`, or `python tools/drum_frames.py ...` in the source tree.)
 
 Frames are written as DIR/<name>_<step>.png (DIR defaults to the dump's folder). The HDF5 layout is that
-of dem.dump_h5 (/frames/<step>/position, velocity, radius; attributes step, time). Needs h5py and
+of dem.dump_h5 (/frames/<step>/position, velocity, radius; attributes step, time). Shaped particles are
+drawn as `dump png` draws them (the same renderer), from the shape table the dump holds (/shapes) and
+each particle's shape, orientation and radius: the outline of each convex piece. Needs h5py and
 matplotlib. The same pictures can be written during a run with `dump ID group png N file_*.png`.
 """
 import argparse
@@ -30,6 +32,44 @@ def read_frames(path):
             arrays = {k: g[k][()] for k in g if isinstance(g[k], h5py.Dataset)}
             out.append((int(g.attrs["step"]), float(g.attrs["time"]), arrays))
     return out
+
+
+class StoredShapes:
+    """The shape table of a dem HDF5 dump (/shapes) as the renderer asks for it: ``radius`` (the rows'
+    bounding radii), ``kind`` and ``convex_pieces(row)``, the connected parts of the row's stored surface
+    mesh at scale 1 (one for a convex shape, one per component of a composite)."""
+
+    def __init__(self, group):
+        self.radius = group["bounding_radius"][()]
+        self.kind = group["kind"][()]
+        self.meshes = [(group[f"mesh_{k}/vertices"][()], group[f"mesh_{k}/faces"][()])
+                       for k in range(int(group.attrs["count"]))]
+
+    def __len__(self):
+        return len(self.meshes)
+
+    def convex_pieces(self, row):
+        from scipy.sparse import coo_matrix
+        from scipy.sparse.csgraph import connected_components
+        V, F = self.meshes[row]
+        edges = np.concatenate([F[:, [0, 1]], F[:, [1, 2]]])
+        graph = coo_matrix((np.ones(len(edges)), (edges[:, 0], edges[:, 1])), shape=(len(V), len(V)))
+        _, label = connected_components(graph, directed=False)
+        pieces = []
+        for part in np.unique(label[F[:, 0]]):
+            faces = F[label[F[:, 0]] == part]
+            used = np.unique(faces)
+            index = np.full(len(V), -1)
+            index[used] = np.arange(len(used))
+            pieces.append((V[used], index[faces]))
+        return pieces
+
+
+def read_shapes(path):
+    """The dump's shape table (StoredShapes), or None when it holds none."""
+    import h5py
+    with h5py.File(path, "r", locking=False) as f:
+        return StoredShapes(f["shapes"]) if "shapes" in f else None
 
 
 def main(argv=None):
@@ -60,11 +100,15 @@ def main(argv=None):
     out = a.out or os.path.dirname(os.path.abspath(a.dump))
     os.makedirs(out, exist_ok=True)
     stem = os.path.splitext(os.path.basename(a.dump))[0]
+    shapes = read_shapes(a.dump)
     for step, time, arr in frames:
         path = os.path.join(out, f"{stem}_{step}.png")
+        shaped = {}
+        if shapes is not None and "shape" in arr and "orientation" in arr:
+            shaped = {"shapes": shapes, "shape": arr["shape"], "quat": arr["orientation"]}
         render_cross_section(path, arr["position"], arr["velocity"], arr["radius"], axis=axis, centre=centre,
                              drum_radius=a.radius or None, up=a.up, vmax=a.vmax,
-                             title=f"step {step}   t = {time:.4g} s", size_px=a.size)
+                             title=f"step {step}   t = {time:.4g} s", size_px=a.size, **shaped)
         print(path)
 
 
