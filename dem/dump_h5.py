@@ -1,6 +1,6 @@
 """dump style h5: every frame of a dump in one HDF5 file, plus an XDMF sidecar for ParaView."""
 import os
-from xml.sax.saxutils import quoteattr
+from .xml_text import escape, quoteattr
 
 import numpy as np
 
@@ -73,11 +73,7 @@ def _data_item(h5name, path, shape, dtype):
     ntype, precision = _number_type(dtype)
     dims = " ".join(str(int(d)) for d in shape)
     return (f'<DataItem Dimensions="{dims}" NumberType="{ntype}" Precision="{precision}" '
-            f'Format="HDF">{_escape(h5name)}:{path}</DataItem>')
-
-
-def _escape(text):
-    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+            f'Format="HDF">{escape(h5name)}:{path}</DataItem>')
 
 
 def xdmf_grid(h5name, step, time, datasets):

@@ -1,7 +1,7 @@
 """dump style vtk: one VTK XML UnstructuredGrid file (.vtu) per frame and a .pvd collection."""
 import base64
 import os
-from xml.sax.saxutils import quoteattr
+from .xml_text import quoteattr
 
 import numpy as np
 

@@ -1,6 +1,5 @@
 """compute rdf"""
 import numpy as np
-from scipy.spatial import cKDTree
 
 from dem.compute import Compute
 from dem.errors import DemError
@@ -16,6 +15,7 @@ def pair_distances(x, lo, prd, periodic, rmax):
     origin = np.where(periodic, lo, x.min(axis=0))
     y = np.mod(x - origin, span)
     y = np.where(y >= span, 0.0, y)            # mod can round up to the period itself
+    from scipy.spatial import cKDTree      # here: scipy.spatial is 0.19 s of every start-up
     pairs = cKDTree(y, boxsize=span).query_pairs(rmax, output_type="ndarray")
     d = y[pairs[:, 0]] - y[pairs[:, 1]]
     d -= span * np.rint(d / span)

@@ -30,9 +30,6 @@ import os
 import struct
 
 import numpy as np
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
-from scipy.spatial import cKDTree
 
 from dem.errors import DemError
 
@@ -359,6 +356,9 @@ def weld(triangles, tol=1e-9):
     if eps > 0.0 and n > 1:
         # (compact_nodes=False: compacting slows query_pairs ~20x on coordinates with few distinct values,
         # as on a ring of points at one height)
+        from scipy.sparse import coo_matrix        # here: scipy is a fifth of every start-up
+        from scipy.sparse.csgraph import connected_components
+        from scipy.spatial import cKDTree
         tree = cKDTree(unique, balanced_tree=False, compact_nodes=False)
         pairs = tree.query_pairs(eps, output_type="ndarray")
         graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
