@@ -341,7 +341,7 @@ def test_pictures_and_series(tmp_path):
     assert cols["f_drum[revs]"][-1] == pytest.approx(0.5 * 200 * 1e-5)   # 30 rpm = 0.5 turn/s
     drum_frames.main([str(tmp_path / "d.h5"), "--frames", "last", "--size", "300"])
     assert (tmp_path / "d_200.png").exists()
-    plot_series.main([str(tmp_path / "d.dat"), "--x", "tstar", "--rpm", "30"])
+    plot_series.main([str(tmp_path / "d.dat"), "--x", "tstar", "--rpm", "30", "-o", str(tmp_path / "d_series.png")])
     assert (tmp_path / "d_series.png").exists()
     drum_analysis.main(["--rpm", "30", "--series", str(tmp_path / "d.dat"), "--h5", str(tmp_path / "d.h5"),
                         "-o", str(tmp_path / "a")])

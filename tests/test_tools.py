@@ -72,10 +72,12 @@ def test_tools_leave_sys_path_alone_and_use_the_installed_plugins(outputs):
     assert res.stdout.splitlines()[-1] == dem_process.__file__
 
 
-def test_plot_series_script(outputs):
+def test_plot_series_script(outputs, tmp_path):
     res = run([console_script("dem-plot"), str(outputs / "d.dat"), "-o", str(outputs / "s.png")], cwd=outputs)
     assert res.returncode == 0, res.stderr[-2000:]
     assert (outputs / "s.png").exists()
+    res = run([console_script("dem-plot"), str(outputs / "d.dat")], cwd=tmp_path)    # into the current folder
+    assert res.returncode == 0 and (tmp_path / "d_series.png").exists(), res.stderr[-2000:]
 
 
 def test_frames_draw_the_dumps_shapes_as_dump_png_does(tmp_path, monkeypatch):

@@ -3,6 +3,8 @@
 
     dem-plot drum.dat [--x time|step|tstar] [--rpm 40] [--columns c_vm c_cn ...] [-o drum_series.png]
 
+The picture goes to the current folder (drum_series.png for drum.dat) unless -o names another.
+
 (also `python -m dem.tools.plot_series ...`, or `python tools/plot_series.py ...` in the source tree.)
 """
 import argparse
@@ -61,7 +63,7 @@ def main(argv=None):
     axes[-1].set_xlabel(xlabel)
     fig.suptitle(os.path.basename(a.series))
     fig.tight_layout()
-    out = a.output or os.path.splitext(a.series)[0] + "_series.png"
+    out = a.output or os.path.splitext(os.path.basename(a.series))[0] + "_series.png"   # in the current folder
     fig.savefig(out, dpi=100)
     print(out)
 
