@@ -25,10 +25,14 @@ def old_state(p, a):
     if problem is None:
         p.error(f"'{a.old}' is a restart of version {restart_file.file_version(a.old)}: nothing to convert")
     reason, text = problem
-    if reason == verified_file.PLAIN_HDF5:
-        with h5py.File(a.old, "r") as f:
-            if f.attrs.get("format") != restart_file.MAGIC or int(f.attrs.get("version", -1)) != 3:
-                p.error(f"'{a.old}' is not a dem restart file of version 3")
+    if reason == verified_file.PLAIN_HDF5:      # unchecked: see the risk above
+        try:
+            with h5py.File(a.old, "r") as f:
+                version3 = f.attrs.get("format") == restart_file.MAGIC and int(f.attrs.get("version", -1)) == 3
+        except Exception as e:
+            p.error(f"'{a.old}' cannot be read (a damaged file?): {type(e).__name__}: {e}")
+        if not version3:
+            p.error(f"'{a.old}' is not a dem restart file of version 3")
         return restart_file.read_unchecked(a.old)
     if reason != verified_file.FOREIGN or restart_file.file_version(a.old) is not None:
         p.error(f"'{a.old}' {text}")
