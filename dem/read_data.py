@@ -15,6 +15,8 @@ HEADER_KEYS = {"atoms": "natoms", "atom types": "ntypes"}
 # sections dem reads; any other (Bonds, Angles, Pair Coeffs ...) is refused rather than skipped
 SECTIONS = ("Atoms", "Velocities", "Masses")
 ATOM_COLUMNS = (7, 10)      # id type diameter density x y z [ix iy iz]
+MAX_TAG = 2 ** 63 - 1       # ids are int64
+MAX_IMAGE = 2 ** 31 - 1     # image flags are int32
 
 
 class ReadData(Command):
@@ -184,15 +186,16 @@ class DataFile:
             if len(words) not in ATOM_COLUMNS:
                 raise self.error(lineno, f"an Atoms line of atom_style sphere has 7 or 10 values "
                                          f"(id type diameter density x y z [ix iy iz]), got {len(words)}")
-            tags[k] = self.integer(lineno, words[0], "atom id")
-            if tags[k] < 1:
-                raise self.error(lineno, f"atom id must be >= 1, got {words[0]}")
-            if tags[k] in seen:
-                raise self.error(lineno, f"atom id {tags[k]} already given on line {seen[tags[k]]}")
-            seen[tags[k]] = lineno
-            types[k] = self.integer(lineno, words[1], "atom type")
-            if not 1 <= types[k] <= self.ntypes:
+            tag = self.integer(lineno, words[0], "atom id")     # range first: no overflow in the arrays
+            if not 1 <= tag <= MAX_TAG:
+                raise self.error(lineno, f"atom id must be in 1..{MAX_TAG}, got {words[0]}")
+            if tag in seen:
+                raise self.error(lineno, f"atom id {tag} already given on line {seen[tag]}")
+            tags[k], seen[tag] = tag, lineno
+            atype = self.integer(lineno, words[1], "atom type")
+            if not 1 <= atype <= self.ntypes:
                 raise self.error(lineno, f"atom type {words[1]} out of range 1..{self.ntypes}")
+            types[k] = atype
             diameter[k] = self.number(lineno, words[2], "diameter")
             density[k] = self.number(lineno, words[3], "density")
             if not diameter[k] > 0:
@@ -202,12 +205,22 @@ class DataFile:
                 raise self.error(lineno, f"density must be > 0, got {words[3]}")
             x[k] = [self.number(lineno, w, "position") for w in words[4:7]]
             if len(words) == 10:
-                image[k] = [self.integer(lineno, w, "image flag") for w in words[7:10]]
+                flags = [self.integer(lineno, w, "image flag") for w in words[7:10]]
+                if any(abs(f) > MAX_IMAGE for f in flags):
+                    raise self.error(lineno, f"image flags must be in -{MAX_IMAGE}..{MAX_IMAGE}, got "
+                                             f"{' '.join(words[7:10])}")
+                image[k] = flags
             if lineno in self.comments:
                 shape[k], scale[k], quat[k] = self.extras(lineno, self.comments[lineno])
         radius = 0.5 * diameter
+        with np.errstate(over="ignore"):
+            rmass = density * 4.0 / 3.0 * math.pi * radius ** 3
+        if not np.all(np.isfinite(rmass)):
+            k = int(np.flatnonzero(~np.isfinite(rmass))[0])
+            raise self.error(rows[k][0], f"diameter {rows[k][1][2]} and density {rows[k][1][3]} give an "
+                                         f"infinite mass")
         return {"tags": tags, "types": types, "radius": radius, "x": x, "image": image, "density": density,
-                "rmass": density * 4.0 / 3.0 * math.pi * radius ** 3, "lines": [ln for ln, _ in rows],
+                "rmass": rmass, "lines": [ln for ln, _ in rows],
                 "shape": shape, "scale": scale, "quat": quat}
 
     def extras(self, lineno, words):
@@ -229,8 +242,9 @@ class DataFile:
                 i += 2
             elif key == "quat" and i + 5 <= len(words):
                 quat = np.array([self.number(lineno, w, "quat") for w in words[i + 1:i + 5]])
-                if not np.linalg.norm(quat) > 0:
+                if not np.any(quat):
                     raise self.error(lineno, "quat must not be zero")
+                quat /= np.max(np.abs(quat))        # normalised later: 1e308 components must not overflow
                 i += 5
             else:
                 raise self.error(lineno, f"unreadable dem extras '# {' '.join(words)}' (expected "

@@ -14,8 +14,10 @@ from .interrupt import SIGNAL_STATE
 from .shapes import command as shape_command
 
 # 1: pickle, single-record history stores ({name}_n, _tag, _val); 2: pickle, keyed stores too
-# ({name}_key); 3: HDF5 (restart_file). Pickles are refused: loading one can run any code.
-VERSION = 3
+# ({name}_key); 3: HDF5 (restart_file); 4: the same with a whole-file checksum in a header (verified_file),
+# checked before HDF5 opens the file. Pickles are refused: loading one can run any code. Version 3 files
+# are refused too (HDF5 cannot read a damaged one safely): dem-convert-restart converts both.
+VERSION = 4
 PICKLE_VERSIONS = "1 or 2"
 
 
@@ -46,22 +48,24 @@ def write_restart(sim, path, use="write_restart"):
         replace_file(path, lambda tmp: restart_file.write(tmp, state, VERSION), use)
 
 
-def load(path):
+def load(path, comm=None):
     """The state of a restart file of the current version, checked; a DemError naming the file for any
-    other file (an old pickle restart is recognised by its first byte and never loaded)."""
-    version = restart_file.file_version(path)
+    other file (an old pickle restart is recognised by its first byte and never loaded). Under MPI
+    (`comm`) rank 0 checks the whole file, then every rank reads it."""
+    version = restart_file.file_version(path, comm)
     if version != VERSION:
         found = PICKLE_VERSIONS if version is None else version
         raise DemError(f"read_restart: '{path}' is a dem restart file of version {found}; this dem reads "
                        f"version {VERSION} only" + (" (old pickle restarts are not loaded: they could run "
-                                                    "code)" if version is None else ""))
-    state = restart_file.read(path)
+                                                    "code)" if version is None else ""),
+                       hint=restart_file.CONVERT_HINT if version is None or version < VERSION else None)
+    state = restart_file.read(path, checked=True)
     restart_file.validate(state, path)
     return state
 
 
 def read_restart(sim, path):
-    state = load(path)
+    state = load(path, sim.comm)
     if sim.domain.box_exist:
         raise DemError("read_restart: the box already exists (read_restart creates it)")
     shape_command.check_restart(sim, state.get("shapes") or [])

@@ -1,15 +1,21 @@
 """The restart file: a restart state (a tree of dicts, lists, arrays and scalars) as an HDF5 file, never
-executable, every dataset with a CRC-32 checksum, each value typed exactly so that a continued run is
-bitwise the same (layout: docs/restart.md). `read` checks the checksums; `validate` the physics."""
+executable, the whole file with a SHA-256 checksum in its header (dem.verified_file: checked before HDF5
+opens it) and every dataset with a CRC-32, each value typed exactly so that a continued run is bitwise the
+same (layout: docs/restart.md). `file_version` checks the file, `read` the datasets, `validate` the
+physics."""
 import zlib
 from urllib.parse import quote, unquote
 
 import h5py
 import numpy as np
 
+from . import verified_file
 from .errors import DemError
 
 MAGIC = "dem-restart"
+KIND = "restart"              # of the checked file's header (verified_file)
+CONVERT_HINT = "convert it with `dem-convert-restart OLD NEW` (docs/restart.md)"
+DAMAGED_HINT = "the file cannot be repaired: continue from an earlier restart (e.g. the other file of `restart N A B`)"
 PICKLE_OPCODE = 0x80          # first byte of a pickle (protocol 2 and later): the old restart files
 QUAT_TOL = 1e-6               # largest | |q| - 1 | of an orientation read back
 FINITE_FIELDS_KIND = "f"      # every floating-point per-particle field must be finite
@@ -94,37 +100,71 @@ def _get(node, path):
 
 
 def write(path, state, version):
-    with h5py.File(path, "w") as f:
+    with verified_file.hdf5_writer(path, KIND) as f:
         f.attrs["format"] = MAGIC
         f.attrs["version"] = version
         for key, value in state.items():
             _put(f, quote(key, safe=""), value)
 
 
-def file_version(path):
-    """The version of the restart file at `path` (the old pickle files: version 2 or older), or a
-    DemError when it is no restart file. Reads at most one byte of a file that is not HDF5."""
+def examine(path):
+    """("version", N) for a whole restart file of version N, ("pickle", None) for an old pickle restart (by
+    its first byte, never loaded), else ("error", message, hint). Checks the whole file before h5py opens
+    it; never raises (under MPI rank 0 examines the file and broadcasts the verdict)."""
+    problem = verified_file.check(path, KIND)
+    if problem is None:
+        try:
+            with h5py.File(path, "r") as f:
+                if f.attrs.get("format") != MAGIC:
+                    return "error", f"read_restart: '{path}' is not a dem restart file", None
+                return "version", int(f.attrs.get("version", -1))
+        except Exception as e:     # checked whole: only a file dem did not write this way gets here
+            return "error", f"read_restart: '{path}' is damaged: {type(e).__name__}: {e}", DAMAGED_HINT
+    reason, text = problem
+    if reason == verified_file.FOREIGN and _first_byte(path) == PICKLE_OPCODE:
+        return "pickle", None
+    hint = {verified_file.PLAIN_HDF5: f"if it is a dem restart of version 3 (written before whole-file checksums), "
+                                     f"{CONVERT_HINT}",
+            verified_file.DAMAGED: DAMAGED_HINT, verified_file.EMPTY: DAMAGED_HINT}.get(reason)
+    return "error", f"read_restart: '{path}' {text}", hint
+
+
+def _first_byte(path):
     try:
         with open(path, "rb") as fh:
             first = fh.read(1)
-    except OSError as e:
-        raise DemError(f"read_restart: cannot open '{path}': {e.strerror}") from None
-    if not h5py.is_hdf5(path):
-        if first and first[0] == PICKLE_OPCODE:
-            return None
-        raise DemError(f"read_restart: '{path}' is not a dem restart file")
-    with h5py.File(path, "r") as f:
-        if f.attrs.get("format") != MAGIC:
-            raise DemError(f"read_restart: '{path}' is not a dem restart file")
-        return int(f.attrs.get("version", -1))
+    except OSError:
+        return None
+    return first[0] if first else None
 
 
-def read(path):
-    """The state stored in `path` (a DemError naming the file and the damaged part if any)."""
+def file_version(path, comm=None):
+    """The version of the checked restart file at `path` (None: an old pickle file, version 2 or older),
+    or a DemError when it is damaged or no restart file. Under MPI (`comm`) rank 0 reads the file and
+    broadcasts what it found."""
+    verdict = examine(path) if comm is None or comm.me == 0 else None
+    if comm is not None:
+        verdict = comm.bcast(verdict)
+    if verdict[0] == "error":
+        raise DemError(verdict[1], hint=verdict[2])
+    return verdict[1]
+
+
+def read(path, checked=False):
+    """The state stored in `path` (a DemError naming the file and the damaged part if any). The whole file
+    is checked first unless `checked` says file_version did so already."""
+    if not checked:
+        file_version(path)
+    return read_unchecked(path)
+
+
+def read_unchecked(path):
+    """The state of an HDF5 restart whose whole-file checksum was checked, or that has none (a version-3
+    file that dem-convert-restart converts: HDF5 reads it unchecked, so only files you trust)."""
     try:
         with h5py.File(path, "r") as f:
             return {unquote(k): _get(f[k], k) for k in f}
-    except (ValueError, KeyError, OSError, UnicodeDecodeError) as e:
+    except (ValueError, KeyError, OSError, RuntimeError, UnicodeDecodeError) as e:
         raise DemError(f"read_restart: '{path}' is damaged: {e}") from None
 
 

@@ -9,6 +9,7 @@ import pytest
 
 from dem.contact.geometry import rotation
 from dem.shapes import Box, Cone, Cylinder, Ellipsoid, Sphere, Superquadric, pinacoid, tetrahedron
+from dem import verified_file
 from dem.shapes import _lattice, glued_mass as gm, shape_db
 from dem.shapes.base import POLYHEDRON
 
@@ -371,6 +372,16 @@ def test_cache_invalidated_by_definition_or_resolution(tmp_path):
     assert shape_db.cached_union_mass_properties(moved, 40, db=db)["cached"] is False
 
 
+def _edited(path):
+    """h5py.File of the shape database `path` to change, its whole-file checksum remade when closed (a
+    whole file with a wrong entry: for the checks of each entry)."""
+    class Edit(h5py.File):
+        def __exit__(self, *exc):
+            super().__exit__(*exc)
+            verified_file.seal(path, shape_db.KIND)
+    return Edit(path, "r+")
+
+
 def test_cache_ignores_tampered_and_foreign_entries(tmp_path):
     path = tmp_path / "shapes.h5"
     db = shape_db.ShapeDB(path)
@@ -379,7 +390,7 @@ def test_cache_ignores_tampered_and_foreign_entries(tmp_path):
     props = gm.union_mass_properties(comps, 40)
     db.put(text, 40, props)
     key = shape_db._key(text, 40)
-    with h5py.File(path, "r+") as f:                 # tampered number: fails the checksum
+    with _edited(path) as f:                 # tampered number: fails the checksum
         f["entries/%s/volume" % key][0] = 2.0 * props["volume"]
     with pytest.warns(shape_db.ShapeDBWarning, match="checksum"):
         assert db.get(text, 40) is None
@@ -387,11 +398,11 @@ def test_cache_ignores_tampered_and_foreign_entries(tmp_path):
         fresh = shape_db.cached_union_mass_properties(comps, 40, db=db)     # recomputed and replaced
     assert fresh["cached"] is False and fresh["volume"] == props["volume"]
     assert db.get(text, 40)["volume"] == props["volume"]
-    with h5py.File(path, "r+") as f:                 # foreign entry under this key: another definition
+    with _edited(path) as f:                 # foreign entry under this key: another definition
         f["entries/%s" % key].attrs["definition"] = text.replace("component", "komponent")
     with pytest.warns(shape_db.ShapeDBWarning, match="another definition"):
         assert db.get(text, 40) is None
-    with h5py.File(path, "r+") as f:                 # stale version
+    with _edited(path) as f:                 # stale version
         g = f["entries/%s" % key]
         g.attrs["definition"] = text
         g.attrs["version"] = shape_db.ALGORITHM_VERSION - 1
@@ -403,7 +414,7 @@ def test_corrupt_file_warns_and_recomputes(tmp_path):
     path = tmp_path / "shapes.h5"
     path.write_bytes(b"\x89HDF\r\n\x1a\n" + b"damaged" * 10)      # an HDF5 file, damaged
     db = shape_db.ShapeDB(path)
-    with pytest.warns(shape_db.ShapeDBWarning, match="unreadable"):
+    with pytest.warns(shape_db.ShapeDBWarning, match="it is an HDF5 file without dem's checksum"):
         p = shape_db.cached_union_mass_properties(_comps(), 30, db=db)
     assert p["cached"] is False
     with warnings.catch_warnings():
@@ -418,8 +429,29 @@ def test_a_file_that_is_not_hdf5_is_left_as_it_is(tmp_path):
     db = shape_db.ShapeDB(path)
     with pytest.warns(shape_db.ShapeDBWarning) as caught:           # unreadable, then not written
         assert shape_db.cached_union_mass_properties(_comps(), 30, db=db)["cached"] is False
-    assert any("not an HDF5 file: left as it is" in str(w.message) for w in caught)
+    assert any("is not a dem shape database: left as it is" in str(w.message) for w in caught)
     assert path.read_bytes() == b"somebody's notes" and not os.path.exists(str(path) + ".corrupt")
+
+
+def test_a_damaged_database_never_reaches_hdf5(tmp_path, monkeypatch):
+    """The whole file is checked before h5py opens it: a changed byte is found, the file set aside unopened
+    (many damaged copies, in subprocesses: test_damaged_files.py)."""
+    path = tmp_path / "shapes.h5"
+    db = shape_db.ShapeDB(path)
+    shape_db.cached_union_mass_properties(_comps(), 20, db=db)
+    with h5py.File(path, "r") as f:                  # an HDF5 file as any other (the header: a user block)
+        assert len(f["entries"]) == 1
+    data = bytearray(path.read_bytes())
+    data[len(data) // 2] ^= 0x10
+    path.write_bytes(bytes(data))
+    monkeypatch.setattr(h5py, "File", None)
+    with pytest.warns(shape_db.ShapeDBWarning, match="not read: it is damaged: checksum mismatch"):
+        assert db.get(shape_db.definition_text(_comps()), 20) is None
+    monkeypatch.undo()
+    with pytest.warns(shape_db.ShapeDBWarning, match="checksum mismatch") as caught:
+        assert shape_db.cached_union_mass_properties(_comps(), 20, db=db)["cached"] is False
+    assert "moved to %s.corrupt" % path in str(caught[-1].message)
+    assert shape_db.cached_union_mass_properties(_comps(), 20, db=db)["cached"] is True
 
 
 def test_default_path_and_disabling(tmp_path, monkeypatch):

@@ -39,6 +39,14 @@ CASES = [
     (HEAD + GOOD[0] + "\n2 2 0.001 2500 0.01 0.01 0.01\n", ":13: atom type 2 out of range 1..1"),
     (HEAD + "\n".join(GOOD) + "\n\nBonds\n\n1 1 1 2\n", ":15: section 'Bonds' is not supported"),
     (HEAD.replace("1 atom types", "1e9 atom types") + "\n".join(GOOD) + "\n", "must be in 1..1000"),
+    # numbers too large for the arrays or the arithmetic (damaged files): refused, not an OverflowError
+    (HEAD + GOOD[0] + "\n99999999999999999999 1 0.001 2500 0.01 0.01 0.01\n",
+     ":13: atom id must be in 1..9223372036854775807, got 99999999999999999999"),
+    (HEAD + GOOD[0] + "\n2 99999999999999999999 0.001 2500 0.01 0.01 0.01\n",
+     ":13: atom type 99999999999999999999 out of range 1..1"),
+    (HEAD + GOOD[0] + "\n2 1 0.001 2500 0.01 0.01 0.01 0 99999999999999999999 0\n",
+     ":13: image flags must be in -2147483647..2147483647"),
+    (HEAD + GOOD[0] + "\n2 1 1e300 2500 0.01 0.01 0.01\n", ":13: diameter 1e300 and density 2500 give an infinite mass"),
 ]
 
 
@@ -58,6 +66,13 @@ def test_non_utf8_data_file(tmp_path):
     path.write_bytes(HEAD.encode() + b"1 1 0.001 2500 0.005 0.005 0.005 \xff\xfe\n")
     with pytest.raises(dem.DemError, match="is not a text"):
         dem.Simulation(screen=False).command(f"read_data {path}")
+
+
+def test_huge_quaternion_components_keep_their_direction(tmp_path):
+    path = tmp_path / "q.data"
+    path.write_text(HEAD + GOOD[0] + "\n" + GOOD[1] + " # quat 1e308 1e308 1e308 1e308\n")
+    sim = dem.Simulation(screen=False).command(f"read_data {path}")
+    assert sim.atom.data["quat"][sim.gather("tag").tolist().index(2)].tolist() == [0.5, 0.5, 0.5, 0.5]
 
 
 def test_good_file_still_reads(tmp_path):

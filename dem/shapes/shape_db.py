@@ -10,12 +10,15 @@ polyhedra) body-frame vertices written to full precision (``float.hex``), its of
 do not change the body and are left out. An entry stores the full definition text, the resolution, the
 version and a sha256 checksum of those and of the stored numbers; it is used only when all of them match
 exactly, so a hash collision, a stale entry (older algorithm), a foreign or a tampered entry is never used
-(it is recomputed and replaced). A file that cannot be read gives a warning and the properties are
-recomputed; writing goes to a temporary file renamed over the old one (atomic on POSIX), under an
-advisory lock, and under MPI only rank 0 writes (``cached_union_mass_properties`` broadcasts). A path that
-is not a regular file (a device, a FIFO: ``dem.files``) is neither read nor written (a warning); an
-unreadable HDF5 file is moved aside to ``PATH.corrupt``, any other file is left as it is and nothing is
-stored in it.
+(it is recomputed and replaced). The whole file carries a SHA-256 checksum in its header
+(``dem.verified_file``), checked before HDF5 opens it: a damaged or truncated file never reaches the HDF5
+library (which could hang or crash on it). A file that cannot be read or fails the check gives a warning
+and the properties are recomputed; writing goes to a temporary file renamed over the old one (atomic on
+POSIX), under an advisory lock, and under MPI only rank 0 writes (``cached_union_mass_properties``
+broadcasts). A path that is not a regular file (a device, a FIFO: ``dem.files``) is neither read nor
+written (a warning); a damaged database, an empty file or an HDF5 file without the header (a database of
+an older dem) is moved aside to ``PATH.corrupt`` when the next entry is stored; any other file is left as
+it is and nothing is stored in it.
 
 Path: ``ShapeDB(path)``; ``default_db()`` uses the environment variable ``DEM_SHAPE_DB`` if set, else
 ``~/.cache/dem/shapes.h5``; the value ``none`` disables the cache.
@@ -26,6 +29,7 @@ import warnings
 
 import numpy as np
 
+from .. import verified_file
 from ..errors import DemError
 from ..files import check_target, replace_file
 from .base import KIND_NAMES, MARGIN, POLYHEDRON
@@ -34,6 +38,9 @@ __all__ = ["ShapeDB", "definition_text", "default_db", "cached_union_mass_proper
            "ShapeDBWarning"]
 
 ALGORITHM_VERSION = 1     # bump when the lattice integration changes its results
+KIND = "shapes"           # of the checked file's header (verified_file)
+# what verified_file.check may find that is ours to set aside (anything else is somebody else's file)
+SET_ASIDE = (verified_file.DAMAGED, verified_file.EMPTY, verified_file.PLAIN_HDF5)
 _FIELDS = ("volume", "centre", "inertia", "error")
 
 
@@ -108,6 +115,10 @@ class ShapeDB:
     def get(self, definition, resolution):
         if not os.path.exists(self.path) or not self._regular():
             return None
+        problem = verified_file.check(self.path, KIND)
+        if problem is not None:
+            self._warn("not read: it %s; recomputing" % problem[1])
+            return None
         import h5py
         key = _key(definition, resolution)
         try:
@@ -116,7 +127,7 @@ class ShapeDB:
                 if g is None:
                     return None
                 return self._read(g, definition, resolution)
-        except Exception as e:          # not HDF5, truncated, unreadable: recompute, never crash
+        except Exception as e:          # checked whole: a file dem did not write so; recompute, never crash
             self._warn("unreadable (%s: %s); recomputing" % (type(e).__name__, e))
             return None
 
@@ -141,12 +152,11 @@ class ShapeDB:
 
     def put(self, definition, resolution, props):
         """Store (replacing an entry of the same key); False with a warning if the file cannot be written."""
-        import h5py
         key = _key(definition, resolution)
         arrays = _props_arrays(props)
 
         def write(tmp):
-            with h5py.File(tmp, "w") as out:
+            with verified_file.hdf5_writer(tmp, KIND) as out:
                 self._copy_entries(out, skip=key)
                 g = out.require_group("entries").create_group(key)
                 g.attrs["definition"] = definition
@@ -171,9 +181,19 @@ class ShapeDB:
         return True
 
     def _copy_entries(self, out, skip):
-        """Copy the readable entries of the current file into ``out`` (a corrupt HDF5 file is set aside; any
-        other file is not ours to move: DemError)."""
+        """Copy the readable entries of the current file into ``out``: a damaged database (or an empty file,
+        or one of an older dem, without checksum) is set aside, unopened; any other file is not ours to
+        move: DemError."""
         if not os.path.exists(self.path):
+            return
+        problem = verified_file.check(self.path, KIND)
+        if problem is not None:
+            reason, text = problem
+            if reason not in SET_ASIDE:
+                raise DemError("'%s' %s: left as it is" % (self.path, text))
+            aside = self.path + ".corrupt"
+            self._warn("it %s; moved to %s and started anew" % (text, aside))
+            os.replace(self.path, aside)
             return
         import h5py
         try:
@@ -188,17 +208,10 @@ class ShapeDB:
                             f.copy(entries[name], dst, name=name)
                         except Exception:
                             pass
-        except Exception as e:
-            if not _hdf5_signature(self.path):
-                raise DemError("'%s' is not an HDF5 file: left as it is" % self.path) from None
+        except Exception as e:      # checked whole: a file dem did not write so
             aside = self.path + ".corrupt"
             self._warn("unreadable (%s); moved to %s and started anew" % (e, aside))
             os.replace(self.path, aside)
-
-
-def _hdf5_signature(path):
-    with open(path, "rb") as fh:
-        return fh.read(8) == b"\x89HDF\r\n\x1a\n"
 
 
 class _Lock:
