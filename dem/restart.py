@@ -31,6 +31,7 @@ def write_restart(sim, path, use="write_restart"):
     nb = sim.neighbor
     state = {
         "step": sim.update.ntimestep, "time": sim.update.time, "dt": sim.update.dt,
+        "time_anchor": list(sim.update.time_anchor),
         "lo": sim.domain.lo.copy(), "hi": sim.domain.hi.copy(), "boundary": sim.domain.boundary,
         "ntypes": atom.ntypes, "natoms": atom.natoms, "max_tag": atom.max_tag, "groups": sim.groups.names,
         "nlost": sim.domain.nlost,
@@ -76,9 +77,12 @@ def read_restart(sim, path):
     atom.ntypes = state["ntypes"]
     for name in state["groups"]:
         sim.groups.find_or_create(name)
-    up.ntimestep, up.time = state["step"], state["time"]
-    if up.dt is None:
+    up.ntimestep = state["step"]
+    if up.dt is None or up.dt == state["dt"]:      # the restart's dt: its time goes on as it would have
         up.dt = state["dt"]
+        up.time_anchor = state["time_anchor"]
+    else:                                          # the script's own dt, from the restart's time on
+        up.time = state["time"]
     fields, xhold = sim.comm.scatter_restart(state)
     for name, values in fields.items():
         if name not in atom.fields:

@@ -19,7 +19,7 @@ DAMAGED_HINT = "the file cannot be repaired: continue from an earlier restart (e
 PICKLE_OPCODE = 0x80          # first byte of a pickle (protocol 2 and later): the old restart files
 QUAT_TOL = 1e-6               # largest | |q| - 1 | of an orientation read back
 FINITE_FIELDS_KIND = "f"      # every floating-point per-particle field must be finite
-REQUIRED = ("step", "time", "dt", "lo", "hi", "boundary", "nlost", "ntypes", "natoms", "max_tag", "groups",
+REQUIRED = ("step", "time", "time_anchor", "dt", "lo", "hi", "boundary", "nlost", "ntypes", "natoms", "max_tag", "groups",
             "fields", "field_specs", "neighbor", "fixes", "pair", "shapes")
 
 
@@ -177,6 +177,9 @@ def validate(state, path):
     missing = [key for key in REQUIRED if key not in state]
     if missing:
         bad(f"incomplete state (no {', '.join(missing)})")
+    anchor = np.asarray(state["time_anchor"], dtype=float)
+    if anchor.shape != (2,) or not np.all(np.isfinite(anchor)) or not 0 <= anchor[0] <= state["step"]:
+        bad(f"invalid time anchor {state['time_anchor']!r} (step, time where dt last changed)")
     fields, specs = state["fields"], state["field_specs"]
     lo, hi = np.asarray(state["lo"], float), np.asarray(state["hi"], float)
     if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) and np.all(hi > lo)):

@@ -57,8 +57,20 @@ class Update:
 
     @dt.setter
     def dt(self, dt):
-        self.time = self.time          # the time so far, from here on with the new dt
+        if self._dt is not None:
+            self.time = self.time      # the time so far, from here on with the new dt
         self._dt = dt
+
+    @property
+    def time_anchor(self):
+        """(step, time) where dt last changed: restarts keep it, so that a continued run's time is the
+        uninterrupted run's to the last digit."""
+        return self._time_anchor
+
+    @time_anchor.setter
+    def time_anchor(self, anchor):
+        step, t = anchor
+        self._time_anchor = (int(step), float(t))
 
     def reset_step(self, step):
         """`reset_timestep`: the step count changes, the time does not."""

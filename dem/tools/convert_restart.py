@@ -53,6 +53,7 @@ def main(argv=None):
     a = p.parse_args(argv)
     try:
         state = old_state(p, a)
+        state.setdefault("time_anchor", [state["step"], state["time"]])   # older files: from their step on
         restart_file.write(a.new, state, restart.VERSION)
         restart.load(a.new)
     except DemError as e:
