@@ -45,6 +45,24 @@ DEFAULT_CRUST_FRACTION = 0.05   # default crust = this * inradius: overlaps of a
 #                                 the GJK fast path, rounding of edges stays well below 5 % of the size
 
 
+MAX_LENGTH = 1e40   # m: the largest |number| in a shape definition (sizes, coordinates, offsets). The
+#                     inertia per unit density grows as length^5 (1e200 here), which leaves 1e100 of room
+#                     for density, scale^5 and the parallel-axis sums before float64 overflows (1.8e308);
+#                     no grain comes near it (the Sun's radius is 7e8 m)
+
+
+def check_lengths(values, what):
+    """ValueError unless every number of `values` is finite and at most MAX_LENGTH in magnitude, so that
+    the mass properties stay finite (an overflow would end in a failed eigen solve)."""
+    v = np.asarray(values, dtype=float)
+    bad = ~np.isfinite(v)
+    if np.any(bad):
+        raise ValueError(f"{what}: non-finite number {v[bad].flat[0]}")
+    if v.size and np.abs(v).max() > MAX_LENGTH:
+        raise ValueError(f"{what}: {np.abs(v).max():g} exceeds {MAX_LENGTH:g} in magnitude (the inertia, "
+                         f"length^5, would overflow)")
+
+
 def packed_params(*values, margin=0.0):
     p = np.zeros(NPARAM)
     p[:len(values)] = values

@@ -260,7 +260,8 @@ class ShapeCommand(Command):
     `ellipsoid A B C`, `superquadric A B C N1 N2`, `tetrahedron EDGE`, `pinacoid L G E [ALPHA]`,
     `polyhedron X Y Z ...` or `polyhedron file F.obj|F.stl` (convex hull). Sizes are full sizes except
     radii and ellipsoid/superquadric half axes. The body frame is the principal frame through the centre
-    of mass.
+    of mass. Every number of a shape (sizes, points, component offsets) is finite and at most 1e40 in
+    magnitude: the inertia grows as size^5 and must not overflow.
 
     `crust C`: thickness of the Grains3D crust (contact detection on bodies shrunk by C; overlaps up to
     twice the crust are found by GJK, deeper ones by EPA; edges and corners are rounded by C in
@@ -319,7 +320,7 @@ class ShapeCommand(Command):
         if file is not None and kind != "polyhedron":
             raise a.error("'file' applies to polyhedron shapes")
         try:
-            shape = cls(sim).make(values, crust, file)
+            shape = cls(sim).build(values, crust, file)
         except (ValueError, OSError) as e:
             raise a.error(str(e)) from None
         sim.shapes = t.added(name, shape, words)

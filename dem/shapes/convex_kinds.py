@@ -4,7 +4,9 @@ command itself, which looks a kind up in the registry, in dem/shapes/command.py)
 """
 import numpy as np
 
-from .polyhedron import Polyhedron, pinacoid, tetrahedron
+from .base import check_lengths
+
+from .polyhedron import Polyhedron, nonconvex_note, pinacoid, read_mesh, tetrahedron
 from .primitives import Box, Cone, Cylinder, Ellipsoid, Sphere, Superquadric, cube
 
 
@@ -21,6 +23,11 @@ class ShapeKind:
 
     def make(self, values, crust, file):
         raise NotImplementedError
+
+    def build(self, values, crust, file):
+        """make() after checking that the numbers are finite and bounded (base.check_lengths)."""
+        check_lengths(values, f"{self.style} parameters")
+        return self.make(values, crust, file)
 
 
 def _simple(style_name, factory, n, usage, doc):
@@ -66,8 +73,11 @@ class ShapePinacoid(ShapeKind):
 class ShapePolyhedron(ShapeKind):
     """shape NAME polyhedron X1 Y1 Z1 X2 Y2 Z2 ... | shape NAME polyhedron file F.obj|F.stl
 
-    Convex hull of the given points (at least 4), or of the vertices of an OBJ or STL file. The body frame
-    is the principal frame through the centre of mass."""
+    Convex hull of the given points (at least 4 distinct, not all coplanar; repeated points are merged),
+    or of the vertices of an OBJ or STL file. The body frame is the principal frame through the centre of
+    mass. A polyhedron thinner than 1e-6 of its largest extent is an error (its crust and faces would be
+    round-off). A mesh that is not convex gets a warning with the volume its hull adds (closed meshes; an
+    open one: the vertices inside the hull): a non-convex grain is `shape NAME glued` of convex parts."""
     style = "polyhedron"
     usage = "X Y Z X Y Z ... | file F"
     nparams = None
@@ -76,7 +86,13 @@ class ShapePolyhedron(ShapeKind):
         if file is not None:
             if values:
                 raise ValueError("give either vertices or a file")
-            return Polyhedron.from_file(file, crust=crust)
+            V, T = read_mesh(file)
+            shape = Polyhedron(V, crust=crust, name=str(file).rsplit("/", 1)[-1].rsplit(".", 1)[0])
+            note = nonconvex_note(V, T, shape)
+            if note:
+                where = self.sim.input.location
+                self.sim.warning(f"{where + ': ' if where else ''}shape polyhedron file {file}: {note}")
+            return shape
         if len(values) < 12 or len(values) % 3:
             raise ValueError("a polyhedron needs at least 4 points (x y z each) or 'file F'")
         return Polyhedron(np.array(values).reshape(-1, 3), crust=crust)

@@ -16,7 +16,7 @@ the shape table listed by the composite's row (dem/shapes/_table.pxd).
 """
 import numpy as np
 
-from .base import BOX, GLUED, POLYHEDRON, Shape, packed_params
+from .base import BOX, GLUED, POLYHEDRON, Shape, check_lengths, packed_params
 from .polyhedron import principal_frame
 
 DEFAULT_RESOLUTION = 500      # lattice points along the longest side: < 0.2 % error (Part III Fig. 3)
@@ -79,8 +79,7 @@ class Glued(Shape):
             if not isinstance(shape, Shape) or shape.kind == GLUED:
                 raise ValueError("components of a glued shape are convex shapes")
             off = np.asarray(off, dtype=float).reshape(3)
-            if not np.all(np.isfinite(off)):
-                raise ValueError("a component offset must be finite")
+            check_lengths(off, "a component offset")
             comps.append((shape, off, _rotation(rot)))
         if not comps:
             raise ValueError("a glued shape needs at least one component")

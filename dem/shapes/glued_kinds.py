@@ -20,6 +20,7 @@ import numpy as np
 
 from ..files import check_target
 from . import glued_builtins as gb
+from .base import check_lengths
 from .convex_kinds import SHAPE_KINDS
 from .glued import DEFAULT_RESOLUTION, Glued
 
@@ -57,6 +58,10 @@ class GluedKind:
             i += 1
         opts = a.keywords(i, COMMON)
         crust = a.to_float(opts["crust"][0], "crust") if "crust" in opts else None
+        try:
+            check_lengths(values, f"{self.style} parameters")
+        except ValueError as e:
+            raise a.error(str(e)) from None
         return self.build(a, lambda: self.components(a, values, crust), opts)
 
     def build(self, a, make, opts):
@@ -99,6 +104,10 @@ class ShapeCross(GluedKind):
         if start >= len(a):
             raise a.error(f"{self.style} needs the beam length L")
         L = a.float(start, "beam length L", positive=True)
+        try:
+            check_lengths([L], "beam length L")
+        except ValueError as e:
+            raise a.error(str(e)) from None
         opts = a.keywords(start + 1, spec)
         aspect = a.to_float(opts["aspect"][0], "aspect") if "aspect" in opts else gb.DEFAULT_ASPECT
         crust = a.to_float(opts["crust"][0], "crust") if "crust" in opts else None
@@ -175,10 +184,18 @@ class ShapeGlued(GluedKind):
 
     def _read(self, a, path):
         try:
-            with open(path) as f:
-                text = f.read()
+            with open(path, "rb") as f:
+                data = f.read()
         except OSError as e:
             raise a.error(f"cannot read component file '{path}': {e.strerror}") from None
+        try:
+            if b"\0" in data:              # UTF-8 text never holds a NUL byte; binary files mostly do
+                raise UnicodeDecodeError("utf-8", data, data.index(b"\0"), data.index(b"\0") + 1, "NUL")
+            text = data.decode("utf-8-sig")
+        except UnicodeDecodeError as e:
+            raise a.error(f"component file '{path}' is not a text file (byte {e.start} is "
+                          f"0x{data[e.start]:02x}): it lists one component per line, e.g. "
+                          f"'box 0.001 0.001 0.002 at 0 0 0'") from None
         out = []
         for n, line in enumerate(text.splitlines(), 1):
             ws = line.split("#", 1)[0].split()
@@ -202,6 +219,10 @@ class ShapeGlued(GluedKind):
                 if len(ws) < i + 4:
                     raise a.error(f"{where}: 'at' needs X Y Z")
                 off = np.array([a.to_float(v, f"{where}: at") for v in ws[i + 1:i + 4]])
+                try:
+                    check_lengths(off, f"{where}: at")
+                except ValueError as e:
+                    raise a.error(str(e)) from None
                 i += 4
             elif w == "rotate":
                 if len(ws) < i + 5:
@@ -218,7 +239,7 @@ class ShapeGlued(GluedKind):
         if cls.nparams is not None and len(values) != cls.nparams:
             raise a.error(f"{where}: {ws[0]} needs {cls.nparams} number(s): {cls.usage}")
         try:
-            shape = cls(self.sim).make(values, crust, None)
+            shape = cls(self.sim).build(values, crust, None)
         except ValueError as e:
             raise a.error(f"{where}: {e}") from None
         return shape, off, rot

@@ -9,10 +9,47 @@ the pinacoid) keeps them, and degenerate moments (cube, tetrahedron) keep the in
 """
 import numpy as np
 
-from .base import POLYHEDRON, Shape, packed_params
+from .base import POLYHEDRON, Shape, check_lengths, mesh_volume, packed_params
 from .topology import from_triangles
 
 _DEGENERATE = 1e-9   # relative gap below which two principal moments are treated as equal
+# Thinnest polyhedron, as a fraction of its largest extent. Below it the default crust (5 % of the
+# inradius, < 2.5e-8 of the size) comes within 100 times the 1e-10 corner-merge tolerance of the core
+# (_make_core) and near the 1e-9 coplanarity of the faces (topology.py): the core and the faces would be
+# round-off, not geometry. (And a slab's smallest principal moment would be under 1e-12 of its largest.)
+THINNEST = 1e-6
+_FLAT = 1e-12        # width / extent at round-off level: the points are coplanar (collinear), not thin
+
+
+def check_points(P):
+    """ValueError unless the points span a solid: finite and bounded (check_lengths), at least 4 distinct,
+    not collinear, not coplanar, and no thinner than THINNEST of their largest extent. Repeated points are
+    allowed (the hull does not depend on them; an STL file repeats every corner in each of its facets)."""
+    check_lengths(P, "polyhedron points")
+    distinct = len(np.unique(P, axis=0))
+    if distinct < 4:
+        raise ValueError(f"a polyhedron needs at least 4 distinct points, got {distinct}")
+    Pc = P - P.mean(0)
+    _, _, Vt = np.linalg.svd(Pc, full_matrices=False)
+    w = np.ptp(Pc @ Vt.T, axis=0)               # widths along the principal directions, largest first
+    D = w[0]
+    if w[1] <= _FLAT * D:
+        raise ValueError("the points are collinear: a polyhedron needs volume")
+    if w[2] <= _FLAT * D:
+        raise ValueError("the points are coplanar: a polyhedron needs volume")
+    if w[2] < THINNEST * D:
+        raise ValueError(f"the polyhedron is {w[2]:.3g} thick for an extent of {D:.3g}: thinner than "
+                         f"{THINNEST:g} of its size, its crust and faces would be round-off")
+
+
+def _qhull(make, what):
+    """make() with Qhull's errors (degenerate input Qhull could not resolve) as a one-line ValueError."""
+    from scipy.spatial import QhullError
+    try:
+        return make()
+    except QhullError as e:
+        first = next((line for line in str(e).splitlines() if line.strip()), "")
+        raise ValueError(f"{what}: Qhull failed ({first.strip()})") from None
 
 
 def hull_mesh(points):
@@ -21,7 +58,7 @@ def hull_mesh(points):
     if len(P) < 4:
         raise ValueError("a polyhedron needs at least 4 points")
     from scipy.spatial import ConvexHull    # scipy is imported only when a hull is built
-    h = ConvexHull(P)
+    h = _qhull(lambda: ConvexHull(P), "the convex hull of the points")
     idx = np.full(len(P), -1)
     idx[h.vertices] = np.arange(len(h.vertices))
     V = P[h.vertices]
@@ -30,6 +67,32 @@ def hull_mesh(points):
     flip = np.einsum("ij,ij->i", n, h.equations[:, :3]) < 0
     F[flip] = F[flip][:, [0, 2, 1]]
     return V, F, h.equations
+
+
+def merge_close(P, tol):
+    """P without the points closer than ``tol`` to an earlier kept point, in input order (the first of a
+    cluster stands for it). A KD-tree finds the close pairs in O(N log N); only the points in such pairs
+    (the few clusters of non-simple vertices) go through the greedy scan, so the result is that of
+    comparing every point with every kept one before it, without its O(N^2) cost."""
+    P = np.asarray(P, dtype=float).reshape(-1, 3)
+    from scipy.spatial import cKDTree
+    # a little wider than tol, then the distance of the scan itself decides (|p - q| <= tol merges), so
+    # that the tree's own rounding never changes which pairs merge
+    pairs = cKDTree(P).query_pairs(tol * (1.0 + 1e-6), output_type="ndarray")
+    if len(pairs) == 0:
+        return P
+    d = np.linalg.norm(P[pairs[:, 0]] - P[pairs[:, 1]], axis=1)
+    pairs = np.sort(pairs[d <= tol], axis=1)
+    later = {}
+    for i, j in pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]:
+        later.setdefault(int(i), []).append(int(j))
+    dropped = set()
+    for i in sorted(later):          # i is kept unless an earlier kept point dropped it
+        if i not in dropped:
+            dropped.update(later[i])
+    keep = np.ones(len(P), dtype=bool)
+    keep[list(dropped)] = False
+    return P[keep]
 
 
 def mesh_mass_properties(V, F):
@@ -97,6 +160,8 @@ class Polyhedron(Shape):
     def __init__(self, points, crust=None, name=None):
         if name:
             self.name = name
+        points = np.asarray(points, dtype=float).reshape(-1, 3)
+        check_points(points)
         V, F, _ = hull_mesh(points)
         vol, com, M = mesh_mass_properties(V, F)
         if not vol > 0:
@@ -135,15 +200,15 @@ class Polyhedron(Shape):
         eq = self._planes().copy()
         eq[:, 3] += self.crust
         from scipy.spatial import HalfspaceIntersection
-        hs = HalfspaceIntersection(eq, np.zeros(3))
-        P = hs.intersections
-        # non-simple vertices (4+ faces) give clusters of nearly equal points: merge them
-        tol = 1e-10 * self.bounding_radius
-        keep = []
-        for p in P:
-            if all(np.linalg.norm(p - q) > tol for q in keep):
-                keep.append(p)
-        Vc, _, _ = hull_mesh(np.array(keep))
+        hs = _qhull(lambda: HalfspaceIntersection(eq, np.zeros(3)), "the crust core")
+        # non-simple vertices (4+ faces) give clusters of nearly equal points: merge them. Every
+        # intersection is a vertex of the core (the dual of a facet of the planes' polar hull), so no
+        # second hull is taken: it changed nothing on the shapes of the tests and cost 0.8 s of Qhull's
+        # facet merging on the near-coplanar core of a 20,000-point grain (benchmarks/shape_build.py)
+        Vc = merge_close(hs.intersections, 1e-10 * self.bounding_radius)
+        if len(Vc) < 4:
+            raise ValueError("%s: crust %g leaves no core (the shape is too thin for it)"
+                             % (self.name, self.crust))
         self.core_kind, self.core_params = POLYHEDRON, self.params.copy()
         self.core_vertices = np.ascontiguousarray(Vc)
 
@@ -162,26 +227,96 @@ class Polyhedron(Shape):
 
 
 def read_mesh_vertices(path):
-    """Vertex coordinates of an OBJ or STL file (faces are not needed: the shape is the hull)."""
+    """Vertex coordinates of an OBJ or STL file (the shape is their hull)."""
+    return read_mesh(path)[0]
+
+
+def read_mesh(path):
+    """(vertices (n, 3), triangles (m, 3) vertex ids) of an OBJ or STL (ASCII or binary) file: the vertices
+    in file order (an STL's facet corners, each facet its own three), OBJ faces fan-triangulated.
+    ValueError naming the file for what cannot be read."""
     path = str(path)
     low = path.lower()
     if not low.endswith((".obj", ".stl")):
         raise ValueError("unsupported mesh file (OBJ or STL): %s" % path)
     with open(path, "rb") as fh:
         data = fh.read()
-    if low.endswith(".obj"):
-        pts = [list(map(float, line.split()[1:4])) for line in data.decode(errors="replace").splitlines()
-               if line.startswith("v ")]
-        return np.array(pts)
-    if low.endswith(".stl"):
-        if data[:5] == b"solid" and b"facet" in data[:1000] and b"vertex" in data:
-            pts = [list(map(float, line.split()[1:4])) for line in data.decode(errors="replace").splitlines()
-                   if line.strip().startswith("vertex")]
-            return np.array(pts)
-        n = int(np.frombuffer(data[80:84], dtype="<u4")[0])
-        rec = np.frombuffer(data[84:84 + 50 * n], dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)),
-                                                                   ("attr", "<u2")]))
-        return rec["v"].reshape(-1, 3).astype(float)
+    try:
+        if low.endswith(".obj"):
+            V, T = _read_obj(data)
+        elif data[:5] == b"solid" and b"facet" in data[:1000] and b"vertex" in data:
+            V = [list(map(float, line.split()[1:4])) for line in data.decode(errors="replace").splitlines()
+                 if line.strip().startswith("vertex")]
+            V = np.array(V, dtype=float).reshape(-1, 3)
+            T = np.arange(len(V) - len(V) % 3).reshape(-1, 3)
+        else:
+            n = int(np.frombuffer(data[80:84], dtype="<u4")[0])
+            rec = np.frombuffer(data[84:84 + 50 * n], dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)),
+                                                                       ("attr", "<u2")]))
+            V = rec["v"].reshape(-1, 3).astype(float)
+            T = np.arange(len(V)).reshape(-1, 3)
+    except (ValueError, IndexError) as e:
+        raise ValueError(f"mesh file '{path}' cannot be read ({e})") from None
+    return V, T
+
+
+def _read_obj(data):
+    V, T = [], []
+    for line in data.decode(errors="replace").splitlines():
+        w = line.split("#", 1)[0].split()
+        if w[:1] == ["v"]:
+            V.append([float(x) for x in w[1:4]])
+        elif w[:1] == ["f"]:
+            ids = [int(x.split("/", 1)[0]) for x in w[1:]]
+            ids = [i - 1 if i > 0 else len(V) + i for i in ids]       # 1-based, or back from the last
+            T += [(ids[0], ids[k], ids[k + 1]) for k in range(1, len(ids) - 1)]
+    V = np.array(V, dtype=float).reshape(-1, 3)
+    T = np.array(T, dtype=np.int64).reshape(-1, 3)
+    if len(T) and (T.min() < 0 or T.max() >= len(V)):
+        raise ValueError("a face refers to a vertex the file does not have")
+    return V, T
+
+
+def nonconvex_note(V, T, shape):
+    """The warning for a mesh (V, T of read_mesh) whose convex hull, `shape`, is larger than it, else None.
+    A closed, consistently oriented mesh is compared by volume (divergence theorem); for another one only
+    the vertices the hull leaves inside can tell (its own volume is unknown)."""
+    if len(V):          # corners at equal coordinates are one vertex (an STL repeats them per facet)
+        V, inverse = np.unique(V, axis=0, return_inverse=True)
+        T = inverse.reshape(-1)[T]
+    T = T[(T[:, 0] != T[:, 1]) & (T[:, 1] != T[:, 2]) & (T[:, 2] != T[:, 0])]
+    glue = "for a non-convex grain, glue convex parts: shape NAME glued component ... (docs/composites.md)"
+    if _closed(T):
+        own = abs(mesh_volume(V, T))
+        if own > 0 and shape.volume > own * (1.0 + 1e-6):       # round-off is ~1e-15 of the volume
+            return (f"the mesh is not convex: the shape is its convex hull, volume {shape.volume:.6g}, "
+                    f"{100.0 * (shape.volume / own - 1.0):.3g} % more than the mesh's own {own:.6g}; {glue}")
+        return None
+    from scipy.spatial import ConvexHull
+    rest = np.setdiff1d(np.arange(len(V)), _qhull(lambda: ConvexHull(V), "the convex hull").vertices)
+    eq = shape._planes()
+    X = (V[rest] - shape.centroid) @ shape.rotation
+    step = max(1, 2 ** 22 // len(eq))     # blocks of 4 M distances: all at once, 20,000 points took 6 GB
+    depth = np.concatenate([-(X[k:k + step] @ eq[:, :3].T + eq[:, 3]).max(1) for k in range(0, len(X), step)]
+                           or [np.zeros(0)])
+    inside = depth > 1e-9 * shape.bounding_radius                # deeper than round-off
+    if not np.any(inside):
+        return None
+    return (f"the mesh is not closed, so its own volume is unknown, and {int(inside.sum())} of its "
+            f"{len(V)} vertices lie inside its convex hull (up to {depth.max():.3g} deep): the shape is the "
+            f"hull, volume {shape.volume:.6g}; {glue}")
+
+
+def _closed(T):
+    """Every directed edge once and its reverse once: a closed, consistently oriented surface."""
+    if not len(T):
+        return False
+    e = np.c_[T.reshape(-1), T[:, [1, 2, 0]].reshape(-1)]
+    fwd = np.unique(e, axis=0)
+    if len(fwd) != len(e):
+        return False
+    rev = np.unique(e[:, ::-1], axis=0)
+    return np.array_equal(fwd, rev)
 
 
 def tetrahedron(edge, crust=None):

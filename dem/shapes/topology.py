@@ -55,27 +55,31 @@ class Topology:
 
 
 def _edges_of(faces):
-    """Edges (v0, v1) and their faces (f0 running v0 -> v1, f1 running v1 -> v0), in first-seen order."""
-    seen = {}
-    edges, ef = [], []
-    for fi, f in enumerate(faces):
-        m = len(f)
-        for k in range(m):
-            a, b = int(f[k]), int(f[(k + 1) % m])
-            key = (min(a, b), max(a, b))
-            if key in seen:
-                e = seen[key]
-                if ef[e][1] != -1 or edges[e] != (b, a):
-                    raise ValueError("topology: edge %r is not shared by exactly two faces with opposite "
-                                     "orientations" % (key,))
-                ef[e][1] = fi
-            else:
-                seen[key] = len(edges)
-                edges.append((a, b))
-                ef.append([fi, -1])
-    if any(f1 == -1 for _, f1 in ef):
+    """Edges (v0, v1) and their faces (f0 running v0 -> v1, f1 running v1 -> v0), in first-seen order.
+    Vectorised (a scanned grain has tens of thousands of faces): every directed side of every face
+    polygon, grouped by its undirected key; a closed surface has each key exactly twice, reversed."""
+    counts = np.array([len(f) for f in faces], np.int64)
+    a = np.concatenate(faces).astype(np.int64)
+    first = np.r_[0, np.cumsum(counts)[:-1]]
+    nxt = np.arange(1, len(a) + 1)
+    nxt[first + counts - 1] = first                 # the side from a face's last vertex to its first
+    b = a[nxt]
+    face = np.repeat(np.arange(len(faces)), counts)
+    key = np.minimum(a, b) * (int(a.max()) + 1) + np.maximum(a, b)
+    order = np.argsort(key, kind="stable")          # the sides of one edge, in the order they were seen
+    _, at, many = np.unique(key[order], return_index=True, return_counts=True)
+    one, two = order[at], order[np.minimum(at + 1, len(order) - 1)]
+    bad = (many > 2) | ((many == 2) & ((a[two] != b[one]) | (b[two] != a[one])))
+    if np.any(bad):
+        k = one[np.argmax(bad)]
+        raise ValueError("topology: edge %r is not shared by exactly two faces with opposite "
+                         "orientations" % ((int(min(a[k], b[k])), int(max(a[k], b[k]))),))
+    if np.any(many == 1):
         raise ValueError("topology: open surface (an edge with one face)")
-    return np.array(edges, np.int32).reshape(-1, 2), np.array(ef, np.int32).reshape(-1, 2)
+    seen = np.argsort(one, kind="stable")           # first-seen order
+    one, two = one[seen], two[seen]
+    return (np.c_[a[one], b[one]].astype(np.int32).reshape(-1, 2),
+            np.c_[face[one], face[two]].astype(np.int32).reshape(-1, 2))
 
 
 def _check_euler(faces, edges):
@@ -84,63 +88,89 @@ def _check_euler(faces, edges):
         raise ValueError("topology: Euler characteristic %d != 2" % (len(used) - len(edges) + len(faces)))
 
 
+def _rowdot(x, y):
+    """Row-wise x . y computed as ndarray.dot of each row (batched matmul rounds alike), so that the
+    vectorised faces equal those computed one by one, bit for bit."""
+    return np.matmul(x[:, None, :], y[:, :, None])[:, 0, 0]
+
+
 def from_triangles(V, F):
-    """Topology of the convex polytope with vertices V and outward triangles F (a closed convex hull)."""
+    """Topology of the convex polytope with vertices V and outward triangles F (a closed convex hull).
+
+    Vectorised over the triangles: a scanned grain's hull has tens of thousands, and a Python loop per
+    triangle cost seconds. Only groups of coplanar triangles (merged faces, few) go through a loop."""
     V = np.asarray(V, float).reshape(-1, 3)
     F = np.asarray(F, np.int64).reshape(-1, 3)
-    n = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
-    n /= np.linalg.norm(n, axis=1)[:, None]
-    # union-find over triangles sharing an edge with (nearly) equal normals
-    parent = list(range(len(F)))
-
-    def root(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-    by_edge = {}
-    for t, tri in enumerate(F):
-        for k in range(3):
-            a, b = int(tri[k]), int(tri[(k + 1) % 3])
-            by_edge.setdefault((min(a, b), max(a, b)), []).append(t)
-    for ts in by_edge.values():
-        if len(ts) == 2:
-            t0, t1 = ts
-            if np.linalg.norm(n[t0] - n[t1]) < COPLANAR:
-                r0, r1 = root(t0), root(t1)
-                if r0 != r1:
-                    parent[max(r0, r1)] = min(r0, r1)
-    groups = {}
-    for t in range(len(F)):
-        groups.setdefault(root(t), []).append(t)
-    faces, normals, offsets = [], [], []
-    for r in sorted(groups):                       # faces in the order of their first triangle
-        ts = groups[r]
-        area = np.linalg.norm(np.cross(V[F[ts, 1]] - V[F[ts, 0]], V[F[ts, 2]] - V[F[ts, 0]]), axis=1)
-        nf = (n[ts] * area[:, None]).sum(0)
-        nf /= np.linalg.norm(nf)
-        # the boundary of the group: directed triangle edges whose reverse is not in the group
-        directed = set()
-        for t in ts:
-            for k in range(3):
-                directed.add((int(F[t, k]), int(F[t, (k + 1) % 3])))
-        nxt = {a: b for (a, b) in directed if (b, a) not in directed}
-        start = min(nxt)
-        loop = [start]
-        while True:
-            b = nxt[loop[-1]]
-            if b == start:
-                break
-            loop.append(b)
-            if len(loop) > len(nxt):
-                raise ValueError("topology: face boundary is not a single loop")
-        loop = _drop_collinear(V, loop, nf)
-        faces.append(np.array(loop, np.int32))
-        normals.append(nf)
-        offsets.append(float((V[loop] @ nf).max()))
+    T = len(F)
+    c = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
+    n = c / np.linalg.norm(c, axis=1)[:, None]
+    area = np.linalg.norm(c, axis=1)
+    # triangles sharing an edge with (nearly) equal normals are one face: connected components of
+    # those pairs; a face is named by its lowest triangle, and faces come in that order
+    a, b = F.reshape(-1), F[:, [1, 2, 0]].reshape(-1)
+    key = np.minimum(a, b) * (len(V) + 1) + np.maximum(a, b)
+    order = np.argsort(key, kind="stable")
+    _, at, many = np.unique(key[order], return_index=True, return_counts=True)
+    at = at[many == 2]
+    t0, t1 = order[at] // 3, order[at + 1] // 3
+    d = n[t0] - n[t1]
+    join = np.sqrt(_rowdot(d, d)) < COPLANAR
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    graph = coo_matrix((np.ones(int(join.sum())), (t0[join], t1[join])), shape=(T, T))
+    _, label = connected_components(graph, directed=False)
+    lowest = np.full(label.max() + 1, T)
+    np.minimum.at(lowest, label, np.arange(T))
+    root = lowest[label]
+    roots, size = np.unique(root, return_counts=True)
+    # single triangles: the polygon is the triangle from its lowest vertex id
+    single = roots[size == 1]
+    k0 = np.argmin(F[single], axis=1)
+    tri = F[single[:, None], (k0[:, None] + np.arange(3)) % 3]
+    w = n[single] * area[single, None]
+    nrm1 = w / np.sqrt(_rowdot(w, w))[:, None]
+    off1 = np.matmul(V[tri], nrm1[:, :, None])[:, :, 0].max(1)
+    faces = [None] * len(roots)
+    normals = np.empty((len(roots), 3))
+    offsets = np.empty(len(roots))
+    pos1 = np.flatnonzero(size == 1)
+    normals[pos1], offsets[pos1] = nrm1, off1
+    tri32 = tri.astype(np.int32)
+    for p, f in zip(pos1.tolist(), tri32):
+        faces[p] = f
+    merged = np.flatnonzero(size > 1)
+    if len(merged):
+        members = np.argsort(root, kind="stable")    # triangles by face, increasing within each
+        bounds = np.r_[0, np.cumsum(size)]
+        for p in merged.tolist():
+            ts = members[bounds[p]:bounds[p + 1]]
+            faces[p], normals[p], offsets[p] = _merged_face(V, F, n, area, ts)
     edges, ef = _edges_of(faces)
     _check_euler(faces, edges)
     return Topology(V, faces, normals, offsets, edges, ef)
+
+
+def _merged_face(V, F, n, area, ts):
+    """(polygon, unit normal, offset) of the face made of the coplanar triangles ts."""
+    nf = (n[ts] * area[ts, None]).sum(0)
+    nf /= np.linalg.norm(nf)
+    # the boundary of the group: directed triangle edges whose reverse is not in the group
+    directed = set()
+    for t in ts:
+        for k in range(3):
+            directed.add((int(F[t, k]), int(F[t, (k + 1) % 3])))
+    nxt = {a: b for (a, b) in directed if (b, a) not in directed}
+    start = min(nxt)
+    loop = [start]
+    while True:
+        b = nxt[loop[-1]]
+        if b == start:
+            break
+        loop.append(b)
+        if len(loop) > len(nxt):
+            raise ValueError("topology: face boundary is not a single loop")
+    loop = _drop_collinear(V, loop, nf)
+    return np.array(loop, np.int32), nf, float((V[loop] @ nf).max())
 
 
 def _drop_collinear(V, loop, nf):
