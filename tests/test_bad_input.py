@@ -143,9 +143,12 @@ def test_foreign_files_are_not_restart_files(tmp_path):
     with h5py.File(tmp_path / "other.h5", "w") as h5:
         h5["x"] = np.arange(3)
     np.save(tmp_path / "other.npy", np.arange(3))
-    for path in (lammps, tmp_path / "other.h5", tmp_path / "other.npy"):
+    for path in (lammps, tmp_path / "other.npy"):
         with pytest.raises(dem.DemError, match="is not a dem restart file"):
             dem.Simulation(screen=False).command(f"read_restart {path}")
+    # an HDF5 file is never opened unchecked: without dem's checksum header it may be an old dem restart
+    with pytest.raises(dem.DemError, match="is an HDF5 file without dem's checksum header .* or not a dem file"):
+        dem.Simulation(screen=False).command(f"read_restart {tmp_path / 'other.h5'}")
 
 
 def test_mu_without_ks_or_gamma_t_warns_once_naming_the_line(capsys):
