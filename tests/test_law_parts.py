@@ -166,6 +166,13 @@ BAD = [
      "cohesion_energy_density must be > 0"),
     ("pair_coeff * * kn 1e5 en 0.5 cohesion sjkr cohesion_energy_density inf\n",
      "cohesion_energy_density must be a finite number"),
+    ("pair_coeff * * kn 1e5 en 0.5 limit_damping 2\n", "limit_damping must be 0 or 1, got 2"),
+    ("pair_coeff * * kn 1e5 en 0.5 limit_damping -1\n", "limit_damping must be 0 or 1"),
+    ("pair_coeff * * kn 1e5 en 0.5 limit_damping nan\n", "limit_damping must be a finite number"),
+    ("pair_coeff * * kn 1e5 en 0.5 limit_damping yes\n", "limit_damping must be a number, got 'yes'"),
+    ("pair_coeff * * kn 1e5 en 0.5 limit_damping\n", "'keyword value' pairs"),
+    ("pair_coeff * * kn 1e5 en 0.5 tangential viscous mu 0.3 limit_damping 1 limit_damping 0\n",
+     "'limit_damping' is given twice"),
 ]
 BAD_AT_RUN = [
     # the line that leaves its material to types that have none
@@ -216,6 +223,35 @@ def test_jkr_on_a_mesh_wall_is_refused_at_the_run(tmp_path):
     sim.commands(BOX + f"pair_coeff * * kn 1e5 en 0.5\nfix m all wall/mesh file {stl} {JKR}\n" + ATOM)
     with pytest.raises(dem.DemError, match="fix wall/plane and wall/drum have them"):
         sim.commands("run 1")
+
+
+@pytest.mark.parametrize("law", ["model hertz E 1e7 nu 0.3 en 0.3 mu 0", "kn 1e4 en 0.3"])
+def test_limit_damping_keeps_the_normal_force_repulsive(law):
+    """A damped impact on a wall: the dashpot pulls as the sphere leaves (the normal force turns
+    attractive before the overlap ends) unless the line says limit_damping 1 (LAMMPS's limit_damping),
+    which clamps it at zero; the rebound is then faster (less of the impact is dissipated)."""
+    def impact(extra):
+        sim = dem.Simulation(screen=False)
+        sim.commands(f"""
+            boundary f f f
+            region box block -0.05 0.05 -0.05 0.05 0 0.05
+            create_box 1 box
+            create_atoms 1 single 0 0 {R + 1e-6!r} radius {R} density {RHO} v 0 0 -1
+            pair_style sphere
+            pair_coeff * * {law} {extra}
+            fix wall all wall/plane zplane 0 NULL
+            fix 1 all nve/sphere
+            timestep 1e-7
+            thermo 0
+        """)
+        forces = []
+        sim.every(1, lambda s: forces.append(float(s.atom.local("f")[0, 2])))
+        sim.run(40000)
+        return min(forces), float(sim.atom.local("v")[0, 2])
+    pull, rebound = impact("")
+    held, rebound_held = impact("limit_damping 1")
+    assert pull < 0 and held == 0.0
+    assert 0 < rebound < rebound_held
 
 
 def test_every_old_line_makes_the_row_it_always_made():

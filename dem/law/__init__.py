@@ -43,12 +43,15 @@ KEYWORDS = {"kn": "normal stiffness (N/m) of normal hooke",
             "liquid_volume": "volume of a liquid bridge (m^3), > 0",
             "surface_tension": "surface tension of the liquid (N/m), > 0",
             "contact_angle": "contact angle of the liquid on the solid (degrees, 0 <= angle < 90)",
-            "cohesion_energy_density": "cohesion sjkr's pull per unit contact area and overlap (J/m^3), > 0"}
+            "cohesion_energy_density": "cohesion sjkr's pull per unit contact area and overlap (J/m^3), > 0",
+            "limit_damping": "1: the damping never makes the normal force attractive (LAMMPS's limit_damping; "
+                             "0, the default: it may, as the surfaces part)"}
 SELECTORS = ("normal", "damping", "tangential", "rolling", "cohesion")
 # the numbers each part takes: the part's own coefficients and which of them a line must give
 PART_WORDS = {("normal", "hooke"): ("kn",), ("normal", "hertz"): ("E", "nu"), ("normal", "jkr"): ("E", "nu", "w"),
               ("normal", "dmt"): ("E", "nu", "w"),
-              ("damping", "restitution"): ("en", "gamma_t", "beta_t"), ("damping", "hertz"): ("en",),
+              ("damping", "restitution"): ("en", "gamma_t", "beta_t", "limit_damping"),
+              ("damping", "hertz"): ("en", "limit_damping"),
               ("tangential", "spring"): ("mu", "ks"), ("tangential", "mindlin"): ("mu",),
               ("tangential", "viscous"): ("mu",),
               ("rolling", "constant"): ("mu_roll",), ("rolling", "epsd"): ("mu_roll", "eta_roll"),
@@ -176,6 +179,8 @@ def check(c, what):
     for k in ("mu", "gamma_t", "beta_t", "ks", "mu_roll", "eta_roll"):
         if c.get(k, 0.0) < 0:
             raise DemError(f"{what}: {k} must be >= 0")
+    if c.get("limit_damping", 0) not in (0, 1):
+        raise DemError(f"{what}: limit_damping must be 0 or 1, got {c['limit_damping']:g}")
     if c.get("rolling", "constant") != "constant" and not c.get("mu_roll", 0.0) > 0:
         raise DemError(f"{what}: rolling {c['rolling']} needs mu_roll > 0")
 
@@ -239,6 +244,7 @@ def row(c):
     r[ANGLE] = math.radians(c.get("contact_angle", 0.0))
     r[COHESION_K] = c.get("cohesion_energy_density", 0.0)
     r[H_ROLL] = r[H_BOND] = -1.0
+    r[LIMIT] = c.get("limit_damping", 0)
     if c.get("normal", "hooke") == "hooke":
         r[KN] = c["kn"]
     elif "_mix" in c:
