@@ -359,6 +359,8 @@ class Input:
         text = self.substitute(args[0], quotes=False)
         if screen:
             self.sim.print(text)
+        if target is not None:          # never into the log or another output's file (every rank checks)
+            self.sim.output.names.check([target[0]], "print")
         if target is not None and self._is_root():
             _write(target, text)
 

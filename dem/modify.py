@@ -40,6 +40,7 @@ class Modify:
             if fix.id == fid:
                 fix.unfix()
                 del self.fixes[i]
+                self.sim.output.names.release(f"fix {fid}")     # its files may be written by others now
                 if self.sim.update.running:     # from a callback: the rest of this run goes without it
                     self._lists()
                     up = self.sim.update

@@ -6,6 +6,7 @@ import pytest
 
 from dem.errors import DemError, unknown
 from dem.input import Input
+from dem.output_names import OutputNames
 
 
 class Recorder:
@@ -49,6 +50,7 @@ class StubSim:
         self.registry = StubRegistry([recorder(n) for n in ("run", "fix", "units", "region")] + [Boom])
         self.calls, self.where, self.screen, self.log = [], [], [], []
         self.comm = types.SimpleNamespace(me=0)
+        self.output = types.SimpleNamespace(names=OutputNames())     # print's file checks
         self.input = Input(self)
 
     def print(self, text, screen=True):

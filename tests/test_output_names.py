@@ -45,6 +45,27 @@ def test_dump_named_like_the_log(sim, tmp_path):
     assert "create_box" in (tmp_path / "log.dem").read_text()       # the log was not truncated
 
 
+@pytest.mark.parametrize("line, use", [
+    ("fix s all print/series 5 log.dem ke", "fix s print/series"),
+    ("fix p all ave/profile 1 5 log.dem z 4 count", "fix p ave/profile"),
+    ("print hello file log.dem", "print"),
+    ("print hello append log.dem", "print"),
+])
+def test_series_profiles_and_prints_named_like_the_log(sim, tmp_path, line, use):
+    """A series, profile or print file on the log was accepted and the log lost."""
+    refused(sim, line, use, "the log file")
+    assert "create_box" in (tmp_path / "log.dem").read_text()
+
+
+def test_a_series_file_is_free_again_after_unfix(sim):
+    sim.command("fix s all print/series 5 s.dat ke")
+    refused(sim, "fix t all print/series 5 s.dat ke", "fix t print/series", "fix s print/series")
+    refused(sim, "dump d all custom 5 s.dat id", "dump d", "fix s print/series")
+    sim.command("fix s all print/series 5 s.dat ke")       # the same fix again: its own file
+    sim.command("unfix s")
+    sim.command("fix t all print/series 5 s.dat ke")
+
+
 def test_restart_named_like_a_dump(sim, tmp_path):
     sim.command("dump d all h5 5 out.h5")
     refused(sim, "restart 10 r.a out.h5", "restart", "dump d (h5)")

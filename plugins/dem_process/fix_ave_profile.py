@@ -150,7 +150,8 @@ class FixAveProfile(Fix):
         self.last = None
         if "phi" in self.values and self.dx is not None:
             self._grid(self.dx)           # an absurd dx is refused here, not when the first sample never ends
-        self.file = SeriesFile(sim, path, what, "# step time bin coord " + " ".join(self.values))
+        self.file = SeriesFile(sim, path, what, "# step time bin coord " + " ".join(self.values),
+                               f"fix {self.id}")
         where = (f"radial about {'xyz'[self.cylinder.axis]} through ({', '.join(f'{c:.10g}' for c in self.cylinder.centre)})"
                  if self.radial else f"axis {'xyz'[self.axis]}")
         self.file.comment(f"# fix {fid} ave/profile: {where}, {self.nbin} bins of width "

@@ -55,7 +55,8 @@ class FixAveVector(Fix):
         self.sums = np.zeros((self.size, len(self.computes)))
         self.nsamples = 0
         self.last = None
-        self.file = SeriesFile(sim, args[2], what, "# step time row coord " + " ".join(self.names))
+        self.file = SeriesFile(sim, args[2], what, "# step time row coord " + " ".join(self.names),
+                               f"fix {self.id}")
 
     def end_of_step(self):
         up = self.sim.update

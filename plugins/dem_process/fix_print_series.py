@@ -2,7 +2,7 @@
 import os
 
 from dem.errors import DemError
-from dem.files import check_target, open_output
+from dem.files import open_output
 from dem.fix import Fix, Stage
 
 
@@ -61,7 +61,7 @@ class FixPrintSeries(Fix):
         self.fmt = fmt
         self.last_step = None
         self.fh = None
-        check_target(self.path, f"fix {fid} print/series")     # on every rank: all refuse it together
+        sim.output.names.claim(f"fix {fid}", [self.path], f"fix {fid} print/series")   # every rank refuses it
         if sim.comm.me == 0:
             exists = append and os.path.exists(self.path)
             self.fh = open_output(self.path, f"fix {fid} print/series", "a" if append else "w")

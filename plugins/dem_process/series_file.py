@@ -1,6 +1,6 @@
 """The output file of an averaging fix (ave/profile, ave/vector): opened on rank 0 when the fix is
 defined (replaced), a header line, blocks of lines flushed at each write."""
-from dem.files import check_target, open_output
+from dem.files import open_output
 
 
 def sample_step(fix):
@@ -14,10 +14,10 @@ def sample_step(fix):
 
 
 class SeriesFile:
-    def __init__(self, sim, path, what, header):
+    def __init__(self, sim, path, what, header, owner):
         self.fh = None
         self.path = path
-        check_target(path, what)     # on every rank: all refuse it together
+        sim.output.names.claim(owner, [path], what)     # on every rank: all refuse it together
         if sim.comm.me != 0:
             return
         self.fh = open_output(path, what)
