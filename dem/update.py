@@ -8,6 +8,7 @@ One step computes forces on the current state, then integrates (leap-frog Verlet
 Velocities are stored at half steps, so the state between steps is complete without forces: a new run (or a
 run read from a restart) needs no setup force pass and continues the trajectory bitwise.
 """
+import contextlib
 import math
 import time
 
@@ -71,6 +72,17 @@ class Update:
     def time_anchor(self, anchor):
         step, t = anchor
         self._time_anchor = (int(step), float(t))
+
+    @contextlib.contextmanager
+    def as_output_of_step(self, step):
+        """The state as the output of step `step` (END_OF_STEP, before the counter moves on) sees it: that
+        step, its time (from the anchor: exact) and the velocities' synchronisation after it; restored."""
+        saved = (self.ntimestep, self.vsync)
+        self.ntimestep, self.vsync = step, -0.5 * self._dt
+        try:
+            yield
+        finally:
+            self.ntimestep, self.vsync = saved
 
     def reset_step(self, step):
         """`reset_timestep`: the step count changes, the time does not."""

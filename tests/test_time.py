@@ -54,3 +54,15 @@ def test_time_through_a_restart(tmp_path):
         run 5000
     """)
     assert b.update.time == 0.02 + exact((5000, 2e-6))
+
+
+def test_series_output_leaves_the_time_exact(tmp_path, monkeypatch):
+    """fix print/series and ave/vector evaluate as of the step just done (Update.as_output_of_step): the
+    time they see is that step's, and the run's time stays step x dt (they set the time by a sum
+    before, moving the anchor at every line)."""
+    monkeypatch.chdir(tmp_path)
+    sim = one_sphere()
+    sim.commands("fix s all print/series 1000 s.dat time\nrun 20000")
+    assert sim.update.time == exact((20000, 2e-6))
+    rows = [line.split() for line in (tmp_path / "s.dat").read_text().splitlines()[1:]]
+    assert [float(r[2]) for r in rows] == [float(f"{exact((int(r[0]), 2e-6)):.10g}") for r in rows]

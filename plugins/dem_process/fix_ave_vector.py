@@ -63,10 +63,7 @@ class FixAveVector(Fix):
         step = sample_step(self)
         if step is None:
             return
-        # evaluated as the output of step `step` (computes cache by step)
-        saved = (up.ntimestep, up.time, up.vsync)
-        up.ntimestep, up.time, up.vsync = step, up.time + up.dt, -0.5 * up.dt
-        try:
+        with up.as_output_of_step(step):      # evaluated as the output of step `step` (computes cache by step)
             for k, c in enumerate(self.computes):
                 self.sums[:, k] += np.asarray(c.vector(), float)
             self.nsamples += 1
@@ -76,8 +73,6 @@ class FixAveVector(Fix):
                                  + " ".join(f"{v:.10g}" for v in mean[r]) for r in range(self.size)])
                 self.sums[:] = 0.0
                 self.nsamples = 0
-        finally:
-            up.ntimestep, up.time, up.vsync = saved
 
     def unfix(self):
         self.file.close()

@@ -79,14 +79,8 @@ class FixPrintSeries(Fix):
         step = up.ntimestep + 1      # END_OF_STEP runs before the step counter moves on
         if step % self.every:
             return
-        # evaluate as the output of step `step` will: step, time and velocity synchronisation of the
-        # state after this step (restored afterwards)
-        saved = (up.ntimestep, up.time, up.vsync)
-        up.ntimestep, up.time, up.vsync = step, up.time + up.dt, -0.5 * up.dt
-        try:
+        with up.as_output_of_step(step):      # the values thermo will print for this step
             self.write(step)
-        finally:
-            up.ntimestep, up.time, up.vsync = saved
 
     def write(self, step):
         thermo = self.sim.output.thermo
