@@ -158,8 +158,12 @@ class Sim:
 
     def _log_write(self, text):
         if self.logfile:
-            self.logfile.write(text + "\n")
-            self.logfile.flush()
+            try:
+                self.logfile.write(text + "\n")
+                self.logfile.flush()
+            except OSError as e:        # a full disk: stop writing it, and say so (on the screen)
+                name, self.logfile = self.logfile.name, None
+                raise DemError(f"the log file (-log): cannot write '{name}': {e.strerror or e}") from None
 
     def __enter__(self):
         return self

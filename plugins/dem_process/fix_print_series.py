@@ -90,8 +90,11 @@ class FixPrintSeries(Fix):
             cols = [str(step), self.fmt.format(self.sim.update.time)]
             cols += [str(int(v)) if isinstance(v, (int,)) and not isinstance(v, bool) else self.fmt.format(v)
                      for v in values]
-            self.fh.write(" ".join(cols) + "\n")
-            self.fh.flush()
+            try:
+                self.fh.write(" ".join(cols) + "\n")
+                self.fh.flush()
+            except OSError as e:        # a full disk
+                raise DemError(f"fix {self.id} print/series: cannot write '{self.path}': {e.strerror or e}") from None
 
     def unfix(self):
         if self.fh is not None:

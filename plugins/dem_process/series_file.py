@@ -1,5 +1,6 @@
 """The output file of an averaging fix (ave/profile, ave/vector): opened on rank 0 when the fix is
 defined (replaced), a header line, blocks of lines flushed at each write."""
+from dem.errors import DemError
 from dem.files import open_output
 
 
@@ -16,7 +17,7 @@ def sample_step(fix):
 class SeriesFile:
     def __init__(self, sim, path, what, header, owner):
         self.fh = None
-        self.path = path
+        self.path, self.what = path, what
         sim.output.names.claim(owner, [path], what)     # on every rank: all refuse it together
         if sim.comm.me != 0:
             return
@@ -30,11 +31,14 @@ class SeriesFile:
     def write(self, lines):
         if self.fh is None:
             return
-        if self.header is not None:
-            self.fh.write(self.header + "\n")
-            self.header = None
-        self.fh.write("\n".join(lines) + "\n")
-        self.fh.flush()
+        try:
+            if self.header is not None:
+                self.fh.write(self.header + "\n")
+                self.header = None
+            self.fh.write("\n".join(lines) + "\n")
+            self.fh.flush()
+        except OSError as e:            # a full disk
+            raise DemError(f"{self.what}: cannot write '{self.path}': {e.strerror or e}") from None
 
     def close(self):
         if self.fh is not None:
