@@ -298,6 +298,22 @@ def test_errors(tmp_path):
         read_triangles(stl)
     with pytest.raises(DemError, match=r"mesh file '.*nowhere\.obj': no such file"):
         load(tmp_path / "nowhere.obj")
+    # a NaN or infinite vertex, in each format (both checks: the reader's and the mesh's)
+    for value in ("nan", "inf", "-inf"):
+        obj.write_text(f"v 0 0 0\nv 1 0 0\nv 0 {value} 0\nf 1 2 3\n")
+        with pytest.raises(DemError, match=r"triangle 1 has a non-finite coordinate"):
+            read_triangles(obj)
+        stl.write_text(f"solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex {value} 0 0\nvertex 0 1 0\n"
+                       "endloop\nendfacet\nendsolid s\n")
+        with pytest.raises(DemError, match=r"triangle 1 has a non-finite coordinate"):
+            read_triangles(stl)
+    binary = tmp_path / "nan.stl"
+    weld(cube_soup()).write_stl(binary)
+    data = bytearray(binary.read_bytes())
+    data[84 + 12: 84 + 16] = np.float32(np.nan).tobytes()    # the first vertex of the first triangle
+    binary.write_bytes(bytes(data))
+    with pytest.raises(DemError, match=r"triangle 1 has a non-finite coordinate"):
+        read_triangles(binary)
 
 
 # ------------------------------------------------------------------------------- tools/make_meshes.py

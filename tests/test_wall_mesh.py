@@ -244,6 +244,15 @@ def test_errors_name_the_problem(tmp_path):
     (tmp_path / "bad.txt").write_text("0 0 0 0 0\n0 1 0 0 0\n")
     with pytest.raises(DemError, match=r"bad.txt:2: times must increase"):
         sphere_sim(f"fix w all wall/mesh file {mesh} table {tmp_path / 'bad.txt'} {LAW}")
+    for name, text, message in (("nan.txt", "0 0 0 0 0\n1 nan 0 0 0\n", "nan.txt:2: not a finite number"),
+                                ("inf.txt", "0 0 0 0 0\n1 0 0 0 -inf\n", "inf.txt:2: not a finite number"),
+                                ("tnan.txt", "nan 0 0 0 0\n", "tnan.txt:1: not a finite number")):
+        (tmp_path / name).write_text(text)
+        with pytest.raises(DemError, match=message):
+            sphere_sim(f"fix w all wall/mesh file {mesh} table {tmp_path / name} {LAW}")
+    (tmp_path / "binary.txt").write_bytes(b"\x00\xff\xfe garbage")
+    with pytest.raises(DemError, match="binary.txt' is not a text file"):
+        sphere_sim(f"fix w all wall/mesh file {mesh} table {tmp_path / 'binary.txt'} {LAW}")
     (tmp_path / "good.txt").write_text("0 0 0 0 0\n1 1 0 0 0\n")
     with pytest.raises(DemError, match="cannot be combined with linear"):
         sphere_sim(f"fix w all wall/mesh file {mesh} table {tmp_path / 'good.txt'} linear 1 0 0 {LAW}")

@@ -26,6 +26,7 @@ merge transitively; the vertex keeps the coordinates of its first corner in file
 with two equal vertex ids, or with a height over their longest edge at most tol x the diagonal (zero
 area at that tolerance), are dropped and counted in `Mesh.dropped`. Vertices no triangle uses are removed.
 """
+import math
 import os
 import struct
 
@@ -418,10 +419,12 @@ def read_motion(path, what):
     naming `what`, the file and the line otherwise."""
     rows = []
     try:
-        with open(path) as fh:
+        with open(path, encoding="utf-8") as fh:
             lines = fh.readlines()
     except OSError as e:
         raise DemError(f"{what}: cannot read the motion table '{path}': {e.strerror or e}") from None
+    except UnicodeDecodeError:
+        raise DemError(f"{what}: the motion table '{path}' is not a text file") from None
     for lineno, line in enumerate(lines, 1):
         words = line.split("#", 1)[0].split()
         if not words:
@@ -432,6 +435,8 @@ def read_motion(path, what):
             row = [float(w) for w in words]
         except ValueError:
             raise DemError(f"{what}: {path}:{lineno}: not a number in '{line.strip()}'") from None
+        if not all(math.isfinite(v) for v in row):
+            raise DemError(f"{what}: {path}:{lineno}: not a finite number in '{line.strip()}'")
         if rows and not row[0] > rows[-1][0]:
             raise DemError(f"{what}: {path}:{lineno}: times must increase ({row[0]:g} after {rows[-1][0]:g})")
         rows.append(row)
