@@ -223,7 +223,13 @@ def _arithmetic(op, text):
     def divide(a, b):
         if b == 0.0:
             raise DemError(f"division by zero in '{text}'")
-        return a / b
+        return finite(a / b, a, b)
+
+    def finite(value, a, b):
+        """An overflow of finite numbers is an error (it printed `inf`)."""
+        if math.isinf(value) and math.isfinite(a) and math.isfinite(b):
+            raise DemError(f"'{text}' overflows: {format_number(a)} {op} {format_number(b)} is too large")
+        return value
 
     def modulo(a, b):
         if b == 0.0:
@@ -231,8 +237,8 @@ def _arithmetic(op, text):
         return math.fmod(a, b)
 
     return {
-        "+": lambda a, b: a + b, "-": lambda a, b: a - b, "*": lambda a, b: a * b,
-        "/": divide, "%": modulo, "^": _power,
+        "+": lambda a, b: finite(a + b, a, b), "-": lambda a, b: finite(a - b, a, b),
+        "*": lambda a, b: finite(a * b, a, b), "/": divide, "%": modulo, "^": _power,
         "<": lambda a, b: float(a < b), "<=": lambda a, b: float(a <= b),
         ">": lambda a, b: float(a > b), ">=": lambda a, b: float(a >= b),
         "==": lambda a, b: float(a == b), "!=": lambda a, b: float(a != b),
