@@ -131,6 +131,10 @@ class Thermo:
         for name in self.style:
             width = 10 if name in INT_KEYWORDS else 6 if name == "pct" else 7 if name == "eta" else 13
             cols.append(f"{name:>{width}}")
+        if {"pct", "eta"} & set(self.style):     # a script's later runs are not known before they start
+            up = self.sim.update
+            self.sim.print(f"(pct and eta: of this run, steps {up.first_step} to {up.last_step}; "
+                           "the script's later runs are not counted)")
         self.sim.print(" ".join(cols))
 
     def line(self):

@@ -25,6 +25,9 @@ def test_script_from_standard_input(tmp_path):
     out = dem_run(["-log", "none"], stdin=SCRIPT, cwd=tmp_path)
     assert out.returncode == 0, out.stderr
     assert "STEP 10" in out.stdout and "input standard input" in out.stdout
+    lines = out.stdout.splitlines()
+    header = next(k for k, line in enumerate(lines) if line.split()[:1] == ["step"])
+    assert lines[header - 1].startswith("(pct and eta: of this run, steps 0 to ")     # not of the whole job
 
 
 def test_an_error_in_standard_input_names_its_line(tmp_path):
