@@ -102,12 +102,13 @@ def mindlin_reference(s0, vn, e, mu, meff, wt, ystar, gstar, reff, steps=20000):
 
 # --------------------------------------------------------------------------------------------------- runs
 def run_input(n, out, extra=()):
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([ROOT, os.path.join(ROOT, "plugins")]))
+    """Run one input with the installed dem (from the output's folder: `python -m dem` run in the source
+    tree would import its sources, which lack the compiled kernels after a plain `pip install .`)."""
     cmd = [sys.executable, "-m", "dem", "-in", os.path.join(ROOT, "inputs", "validation", f"in.chung_ooi_{n}"),
-           "-log", "none", "-screen", "none", "-var", "out", out]
+           "-log", "none", "-screen", "none", "-var", "out", os.path.abspath(out)]
     for k, v in extra:
         cmd += ["-var", k, str(v)]
-    subprocess.run(cmd, check=True, env=env, cwd=ROOT)
+    subprocess.run(cmd, check=True, cwd=os.path.dirname(os.path.abspath(out)))
 
 
 def read_dump(path):
