@@ -145,9 +145,9 @@ ROWS = [
      "FILE [scale S] [move DX DY DZ] [rotate axis X Y Z angle A] (the mesh/surface's words) with the law "
      f"words {_LAW}"),
     ("fix", "wall/gran/hooke", None, LIGGGHTS,
-     f"fix ID group wall/plane xplane|yplane|zplane LO HI with kn KN en EN mu MU (or wall/mesh, wall/drum)"),
+     "fix ID group wall/plane xplane|yplane|zplane LO HI with kn KN en EN mu MU (or wall/mesh, wall/drum)"),
     ("fix", "wall/gran/hooke/history", None, LIGGGHTS,
-     f"fix ID group wall/plane xplane|yplane|zplane LO HI with kn KN en EN mu MU ks KS (or wall/mesh, wall/drum)"),
+     "fix ID group wall/plane xplane|yplane|zplane LO HI with kn KN en EN mu MU ks KS (or wall/mesh, wall/drum)"),
     ("fix", "wall/gran/hertz/history", None, LIGGGHTS,
      "fix ID group wall/plane xplane|yplane|zplane LO HI with model hertz E .. nu .. en .. mu .. "
      "(or wall/mesh, wall/drum)"),
