@@ -11,10 +11,14 @@ Tolerances and why:
   (measured 1.2e-5 of V, 3 % at the most grazing angle), 8 % on R w (measured 6 % at 81 degrees); everywhere,
   the Hertz-Mindlin law integrated in the tool at t_c / 20000: 3 % of mu (1 + e) v_n (measured 0.04 % and
   1.5 %).
-* tests 6, 8 and the pairs of equal spins (en = 0.5) are NOT asserted against theory: dem lies 9 % (velocity)
-  and 22 % (spin) off the rigid-body values in gross sliding, and 5-15 % off the tool's own integration of
-  its law, not understood yet (docs/validation.md reports them as they are). Only their exact parts are
-  asserted: the restitution, and that opposite spins (contact points moving together) change nothing.
+* tests 6, 8 and the pairs of equal spins (en = 0.5): against the Hertz-Mindlin law integrated in the tool
+  at t_c / 20000, 1 % of mu (1 + e) v_n where the contact slides throughout (measured 0.3 %) and 7 %
+  elsewhere (measured 6.2 %: at the sharp transitions between sticking and sliding, which a step of t_c/400
+  places a little off). Not against the rigid-body values: in gross sliding dem and the integrated law
+  both lie below J_t = mu J_n by an amount that falls as 1 / s0 (the deviation times s0 over the sliding
+  threshold stays 0.125-0.15 of mu (1 + e) v_n from 1 to 5.4 times the threshold): the impulse lost while
+  the Mindlin spring stretches to the Coulomb cap at the start of the contact, which takes mu F_n / (k_t
+  s0). A property of the model, not of its integration.
 """
 import os
 import sys
@@ -48,12 +52,21 @@ def test_restitution_is_the_requested_one(work, law):
         assert abs(e - en) < 2e-3, (mat, en, e)
 
 
+def check_damped(x, x_ref, slide, scale):
+    """en = 0.5 against the integrated law (module docstring): 1 % in gross sliding, 7 % elsewhere."""
+    assert slide.any()
+    scale = np.broadcast_to(scale, np.shape(x))
+    assert np.all(np.abs(x - x_ref)[slide] < 0.01 * scale[slide])
+    assert np.all(np.abs(x - x_ref) < 0.07 * scale)
+
+
 def check_wall(d, mu, e, R, against_theory=True):
     assert np.all(np.abs(d["vz"] / d["vn0"] - e) < 2e-3)
-    if not against_theory:           # en = 0.5: open, see the module docstring
-        return
     scale = mu * (1 + e) * d["vn0"]
     slide = np.abs(d["s0"]) > 3.5 * mu * (1 + e) * d["vn0"] * 1.05
+    if not against_theory:           # en = 0.5: against the integrated law only, see the module docstring
+        check_damped(d["vx"], d["vx_ref"], slide, scale)
+        return
     assert slide.any() and (~slide).any()
     assert np.all(np.abs(d["vx"] - d["vx_rb"])[slide] < 0.03 * scale[slide])
     assert np.all(np.abs(d["w"] - d["w_rb"])[slide] * R < 0.08 * scale[slide])
@@ -79,15 +92,21 @@ def test_oblique_impact_spinning_sphere(work):
 
 
 def test_two_identical_spheres(work):
-    """Opposite spins: nothing tangential happens, exactly. Equal spins (en = 0.5): open, not asserted."""
+    """Opposite spins: nothing tangential happens, exactly. Equal spins (en = 0.5): the integrated law."""
     res = co.pairs(7, work, ["al_alloy", "copper"], 0.1, 0.1, 0.4, 0.5, 0.4, False)
     assert {sense for _, sense in res} == {"opposite", "same"}
     for (mat, sense), d in res.items():
         if sense == "opposite":       # contact points move together: nothing tangential happens
             assert np.all(np.abs(d["vz1"]) < 1e-9) and np.allclose(d["w1"], d["w0"], rtol=1e-9)
+        else:
+            slide = np.abs(d["s0"]) > 3.5 * 0.4 * 1.5 * 0.4 * 1.05
+            check_damped(d["vz1"], d["vz1_ref"], slide, 0.4 * 1.5 * 0.2)
 
 
-def test_two_spheres_of_different_sizes_run(work):
-    """Test 8 (en = 0.5) runs and gives every pair; its values are open (module docstring)."""
+def test_two_spheres_of_different_sizes(work):
+    """Test 8 (en = 0.5): the integrated law."""
     res = co.pairs(8, work, ["al_alloy", "nylon"], 0.1, 0.5, 0.2, 0.5, 0.4, True)
-    assert res and all(np.all(np.isfinite(d["vz1"])) for d in res.values())
+    assert len(res) == 2
+    for key, d in res.items():
+        slide = np.abs(d["s0"]) > 3.5 * 0.4 * 1.5 * 0.2 * 1.05
+        check_damped(d["vz1"], d["vz1_ref"], slide, 0.4 * 1.5 * 0.2)
