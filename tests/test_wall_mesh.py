@@ -399,3 +399,22 @@ def test_walls_in_the_dumps(tmp_path, monkeypatch):
     wall = blocks["wall_w"]
     assert wall.GetNumberOfCells() == 8
     assert np.abs(vtk_to_numpy(wall.GetPoints().GetData()) - expected).max() < 1e-15
+
+
+@pytest.mark.parametrize("motion, message", [
+    ("linear 0 0 1000", "fastest point moves 0.01 m in one step"),              # 1000 m/s x 1e-5 s
+    ("turn origin 0 0 0 axis 0 0 1 rpm 60000", "fastest point moves 0.00889 m"),  # the corners at 0.141 m
+    ("table TABLE", "fastest point moves 0.03 m in one step"),                  # 0.3 m in 0.1 ms
+])
+def test_a_mesh_too_fast_for_the_time_step_is_refused(tmp_path, motion, message):
+    """A mesh moving more than the smallest radius (5 mm) in one step could pass through particles
+    unseen: refused at the run, naming the fix; the same motions 100 times slower run."""
+    mesh = floor(tmp_path / "f.stl", 2)
+    (tmp_path / "fast.txt").write_text("0 0 0 0 0\n0.0001 0 0 0.3 0\n")
+    (tmp_path / "slow.txt").write_text("0 0 0 0 0\n0.01 0 0 0.3 0\n")
+    fast = motion.replace("TABLE", str(tmp_path / "fast.txt"))
+    sim = sphere_sim(f"fix w all wall/mesh file {mesh} {fast} {LAW}")
+    with pytest.raises(DemError, match=f"fix w wall/mesh: its {message}.* than the smallest particle's radius 0.005"):
+        sim.run(1)
+    slow = motion.replace("1000", "10").replace("60000", "600").replace("TABLE", str(tmp_path / "slow.txt"))
+    sphere_sim(f"fix w all wall/mesh file {mesh} {slow} {LAW}").run(1)

@@ -6,7 +6,7 @@ import numpy as np
 from dem.shapes import command as shape_command
 from dem._particles import ParticleView
 from dem.args import Args
-from dem.errors import did_you_mean
+from dem.errors import DemError, did_you_mean
 from dem.fix import Fix, Stage
 
 from . import _wall_mesh
@@ -46,6 +46,9 @@ class FixWallMesh(WallCoefficients, Fix):
       defined, increasing; linear in between, held at the first and last lines outside them (the
       velocity is then 0). The mesh's velocity at the contact point, V + Omega x (p - origin), enters the
       contact law, so a moving mesh drags the particles (a mixer blade, a conveyor, a shaking sieve).
+      A run whose mesh would move more than the smallest particle's radius in one step (its fastest
+      point: the translation plus the turn at the farthest vertex) is refused: particles could pass
+      through it unseen.
     * Contacts: every particle of the group against every triangle it overlaps, one contact per touched
       feature: a sphere meets the triangles at their closest points, and a contact at a shared edge or
       vertex counts once, so a sphere rolling across two coplanar triangles, or over a convex edge, feels
@@ -237,6 +240,36 @@ class FixWallMesh(WallCoefficients, Fix):
             cell *= 1.5
         if self.index is None or self.index.h != cell:
             self.index = _wall_mesh.MeshIndex(self.mesh, cell)
+        self.check_speed()
+
+    def fastest_speed(self):
+        """The largest speed (m/s) of a point of the mesh over its motion: the translation plus the turn
+        times the farthest vertex from the axis."""
+        if self.static is not None:
+            return 0.0
+        if self.motion_table is None:
+            speeds, rates = [np.linalg.norm(self.velocity)], [abs(self.omega_target)]
+        else:
+            times, disp, angle = self.motion_table
+            span = np.diff(times)
+            speeds = np.linalg.norm(np.diff(disp, axis=0), axis=1) / span if len(times) > 1 else [0.0]
+            rates = np.abs(np.diff(angle)) / span if len(times) > 1 else [0.0]
+        rel = self.mesh.vertices - self.origin
+        arm = float(np.max(np.linalg.norm(rel - np.outer(rel @ self.axis, self.axis), axis=1)))
+        return float(np.max(speeds)) + float(np.max(rates)) * arm
+
+    def check_speed(self):
+        """A mesh that moves more than the smallest particle's radius in one step can pass through
+        particles without ever overlapping them enough to be seen (a plane wall also stops a particle
+        behind it; a mesh has no behind)."""
+        sim = self.sim
+        n = sim.atom.nlocal
+        rmin = sim.comm.min(float(sim.atom.data["radius"][:n].min()) if n else np.inf)
+        step = self.fastest_speed() * sim.update.dt
+        if np.isfinite(rmin) and step > rmin:
+            raise DemError(f"fix {self.id} wall/mesh: its fastest point moves {step:.3g} m in one step, more "
+                           f"than the smallest particle's radius {rmin:.3g} m: particles could pass through it",
+                           hint="a smaller time step, or a slower motion")
 
     def compute(self, advance):
         sim = self.sim
