@@ -193,17 +193,23 @@ class FixWallDrum(WallFix, Fix):
         cs, sn = math.cos(dtheta), math.sin(dtheta)
         rb, rc = cs * rb - sn * rc, sn * rb + cs * rc
         x[sel, b], x[sel, c] = self.centre[b] + rb, self.centre[c] + rc
-        atom.data["v"][sel] = self.wall_velocity(x[sel], w)
+        # the drum's velocity w e_a x r, written by components (np.cross costs more than the rest here:
+        # this runs every step for the rough wall's hundreds of spheres)
+        v = atom.data["v"]
+        v[sel, a] = 0.0
+        v[sel, b] = -w * (x[sel, c] - self.centre[c])
+        v[sel, c] = w * (x[sel, b] - self.centre[b])
         om = atom.data["omega"]
         om[sel] = 0.0
         om[sel, a] = w
-        if "quat" in atom.data:                  # q <- (turn about e_a) q
+        if "quat" in atom.data:                  # q <- h q, h = (cos, sin e_a) of the half angle
             q = atom.data["quat"][sel]
-            h = np.zeros(4)
-            h[0], h[1 + a] = math.cos(0.5 * dtheta), math.sin(0.5 * dtheta)
+            h0, ha = math.cos(0.5 * dtheta), math.sin(0.5 * dtheta)
             out = np.empty_like(q)
-            out[:, 0] = h[0] * q[:, 0] - h[1:] @ q[:, 1:].T
-            out[:, 1:] = h[0] * q[:, 1:] + q[:, :1] * h[1:] + np.cross(h[1:], q[:, 1:])
+            out[:, 0] = h0 * q[:, 0] - ha * q[:, 1 + a]
+            out[:, 1 + a] = h0 * q[:, 1 + a] + q[:, 0] * ha
+            out[:, 1 + b] = h0 * q[:, 1 + b] - ha * q[:, 1 + c]
+            out[:, 1 + c] = h0 * q[:, 1 + c] + ha * q[:, 1 + b]
             atom.data["quat"][sel] = out
 
     def surfaces(self):
