@@ -23,22 +23,16 @@ def components():
     return [(Cylinder(1.0, 2.0), np.zeros(3), np.eye(3)), (Cylinder(0.6, 3.0), np.array([0.1, 0.0, 1.7]), ry90)]
 
 
-def read_restart(path):
-    import dem
-    try:
-        dem.Simulation(screen=False).command(f"read_restart {path}")
-    except dem.DemError as e:
-        return "refused", str(e)
-    return "read", ""
-
-
-def read_data(path):
-    import dem
-    try:
-        dem.Simulation(screen=False).command(f"read_data {path}")
-    except dem.DemError as e:
-        return "refused", str(e)
-    return "read", ""
+def command_reader(command):
+    """The check of one file by a dem command (read_restart, read_data): ("read" | "refused", message)."""
+    def read(path):
+        import dem
+        try:
+            dem.Simulation(screen=False).command(f"{command} {path}")
+        except dem.DemError as e:
+            return "refused", str(e)
+        return "read", ""
+    return read
 
 
 class ShapeDBReader:
@@ -74,7 +68,8 @@ class ShapeDBReader:
 
 
 def main(kind, paths):
-    reader = {"restart": lambda: read_restart, "data": lambda: read_data, "shapedb": ShapeDBReader}[kind]()
+    reader = {"restart": lambda: command_reader("read_restart"), "data": lambda: command_reader("read_data"),
+              "shapedb": ShapeDBReader}[kind]()
     for path in paths:
         print(json.dumps({"path": path, "event": "start"}), flush=True)
         try:

@@ -20,6 +20,7 @@ import pytest
 
 import dem
 from damaged_reader import RESOLUTION, components
+from test_restart_file import SCRIPT     # the small restart's bed
 
 HERE = Path(__file__).resolve().parent
 READER = HERE / "damaged_reader.py"
@@ -29,18 +30,6 @@ SEEDS = (*range(60), 94, 157, 340)
 PER_FILE_S = 30        # a file still being read after this long hangs
 BLOCK = 256
 
-SCRIPT = """
-boundary f f f
-region box block 0 4 0 4 0 4
-create_box 1 box
-create_atoms 1 lattice box sc 1.0 radius 0.45 density 1
-pair_style sphere
-pair_coeff * * kn 1e4 en 0.9
-fix 1 all nve/sphere
-timestep 1e-4
-thermo 0
-run 0
-"""
 SAID_DAMAGED = re.compile(r"damaged|truncated|not a dem|empty")
 
 
