@@ -17,6 +17,7 @@ import _thread
 import contextlib
 import os
 import signal
+import sys
 import threading
 
 SIGNALS = (signal.SIGINT, signal.SIGTERM)
@@ -77,8 +78,9 @@ class Signals:
         (blocked in the others), which passes them to the handler in the main thread."""
         for s in SIGNALS:
             signal.signal(s, self.handler)
-        signal.pthread_sigmask(signal.SIG_BLOCK, SIGNALS)
-        threading.Thread(target=self._wait, name="dem-signals", daemon=True).start()
+        if sys.version_info >= (3, 10):    # interrupt_main(signum): 3.10; before, the handler alone (the
+            signal.pthread_sigmask(signal.SIG_BLOCK, SIGNALS)      # first signal waits for the step)
+            threading.Thread(target=self._wait, name="dem-signals", daemon=True).start()
         self.installed = True
 
     def _wait(self):

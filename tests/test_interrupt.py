@@ -173,6 +173,7 @@ run 100''')
 """
 
 
+@pytest.mark.skipif(sys.version_info < (3, 10), reason="the signal thread needs interrupt_main(signum): 3.10")
 @pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
 def test_a_second_signal_stops_a_stuck_step_at_once(tmp_path, signum):
     """A step that does not end (here a C call of 600 s inside it, the GIL released as dem's kernels

@@ -79,7 +79,7 @@ class Run(Command):
     run (while the script is read) ends `dem` at once with the same status; one during `write_restart`
     waits for the file. Called from Python, `sim.run` raises `dem.interrupt.Interrupted` (a
     KeyboardInterrupt) after such a stop. A second signal before the first was acted on (a step that
-    does not end) stops `dem` at once, with the same status: the files written before are whole, the
+    does not end) stops `dem` at once (Python 3.10 and later), with the same status: the files written before are whole, the
     step in progress is lost."""
     style = "run"
     usage = "N [upto] [start S] [stop S] [pre yes|no] [post yes|no] [every M c1 c2 ...]"
