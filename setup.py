@@ -52,6 +52,11 @@ def kernels_fingerprint(extensions):
     return h.hexdigest()
 
 
+def _read(path):
+    with open(path) as f:
+        return f.read()
+
+
 class KernelsBuild(build_ext):
     """build_ext that compiles JOBS kernels at a time (unless told `-j N`), and builds nothing when the
     kernels it built last are there and were built from the same sources and tools (the README's second
@@ -66,7 +71,7 @@ class KernelsBuild(build_ext):
         stamp = os.path.join(self.build_temp, "kernels.sha256")
         key = kernels_fingerprint(self.extensions)
         built = all(os.path.exists(path) for path in self.get_outputs())
-        if not self.force and built and os.path.exists(stamp) and open(stamp).read() == key:
+        if not self.force and built and os.path.exists(stamp) and _read(stamp) == key:
             print(f"dem kernels: up to date ({stamp}), not rebuilt")
             return
         c_sources = {e.name: e.sources for e in cythonize(self.extensions, **CYTHON_OPTIONS)}

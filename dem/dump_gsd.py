@@ -46,6 +46,7 @@ class DumpGSD(Dump):
         except ImportError:
             raise DemError(f"dump {did}: dump gsd needs the gsd package (pip install gsd)") from None
         self._started = False
+        self._shapes = None        # type_shapes, made again only when the shape table grows
 
     def gathered_fields(self):
         return ["id", "position", "orientation", "velocity", "mass", "radius", "shape"]
@@ -54,11 +55,14 @@ class DumpGSD(Dump):
         """GSD shapes of the types: the spheres', then each shape row's surface mesh at bounding radius 1
         (OVITO scales a type's mesh by the particle's radius)."""
         table = self.sim.shapes
+        if self._shapes is not None and len(self._shapes) == len(table) + 1:     # rows are only added
+            return self._shapes
         shapes = [{"type": "Sphere", "diameter": 2.0}]
         for k in range(len(table)):
             verts, faces = table.mesh(k)
             shapes.append({"type": "Mesh", "vertices": (verts / float(table.radius[k])).tolist(),
                            "indices": np.asarray(faces).tolist()})
+        self._shapes = shapes
         return shapes
 
     def write_frame(self, frame):

@@ -44,11 +44,17 @@ class StoredShapes:
         self.kind = group["kind"][()]
         self.meshes = [(group[f"mesh_{k}/vertices"][()], group[f"mesh_{k}/faces"][()])
                        for k in range(int(group.attrs["count"]))]
+        self._pieces = {}          # row -> its pieces, found once for all the frames
 
     def __len__(self):
         return len(self.meshes)
 
     def convex_pieces(self, row):
+        if row not in self._pieces:
+            self._pieces[row] = self._split(row)
+        return self._pieces[row]
+
+    def _split(self, row):
         from scipy.sparse import coo_matrix
         from scipy.sparse.csgraph import connected_components
         V, F = self.meshes[row]
