@@ -9,6 +9,7 @@ the pinacoid) keeps them, and degenerate moments (cube, tetrahedron) keep the in
 """
 import numpy as np
 
+from .. import mesh_file
 from .base import POLYHEDRON, Shape, check_lengths, mesh_volume, packed_params
 from .topology import from_triangles
 
@@ -232,49 +233,12 @@ def read_mesh_vertices(path):
 
 
 def read_mesh(path):
-    """(vertices (n, 3), triangles (m, 3) vertex ids) of an OBJ or STL (ASCII or binary) file: the vertices
-    in file order (an STL's facet corners, each facet its own three), OBJ faces fan-triangulated.
-    ValueError naming the file for what cannot be read."""
+    """(vertices, triangles) of an OBJ or STL (ASCII or binary) file, read as the mesh walls read it
+    (dem.mesh_file.read_mesh: an STL's corners three per triangle, which nonconvex_note joins)."""
     path = str(path)
-    low = path.lower()
-    if not low.endswith((".obj", ".stl")):
+    if not path.lower().endswith((".obj", ".stl")):
         raise ValueError("unsupported mesh file (OBJ or STL): %s" % path)
-    with open(path, "rb") as fh:
-        data = fh.read()
-    try:
-        if low.endswith(".obj"):
-            V, T = _read_obj(data)
-        elif data[:5] == b"solid" and b"facet" in data[:1000] and b"vertex" in data:
-            V = [list(map(float, line.split()[1:4])) for line in data.decode(errors="replace").splitlines()
-                 if line.strip().startswith("vertex")]
-            V = np.array(V, dtype=float).reshape(-1, 3)
-            T = np.arange(len(V) - len(V) % 3).reshape(-1, 3)
-        else:
-            n = int(np.frombuffer(data[80:84], dtype="<u4")[0])
-            rec = np.frombuffer(data[84:84 + 50 * n], dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)),
-                                                                       ("attr", "<u2")]))
-            V = rec["v"].reshape(-1, 3).astype(float)
-            T = np.arange(len(V)).reshape(-1, 3)
-    except (ValueError, IndexError) as e:
-        raise ValueError(f"mesh file '{path}' cannot be read ({e})") from None
-    return V, T
-
-
-def _read_obj(data):
-    V, T = [], []
-    for line in data.decode(errors="replace").splitlines():
-        w = line.split("#", 1)[0].split()
-        if w[:1] == ["v"]:
-            V.append([float(x) for x in w[1:4]])
-        elif w[:1] == ["f"]:
-            ids = [int(x.split("/", 1)[0]) for x in w[1:]]
-            ids = [i - 1 if i > 0 else len(V) + i for i in ids]       # 1-based, or back from the last
-            T += [(ids[0], ids[k], ids[k + 1]) for k in range(1, len(ids) - 1)]
-    V = np.array(V, dtype=float).reshape(-1, 3)
-    T = np.array(T, dtype=np.int64).reshape(-1, 3)
-    if len(T) and (T.min() < 0 or T.max() >= len(V)):
-        raise ValueError("a face refers to a vertex the file does not have")
-    return V, T
+    return mesh_file.read_mesh(path)
 
 
 def nonconvex_note(V, T, shape):
