@@ -2,6 +2,7 @@
 equal-style variables. Kinetic energies use the stored (half-step) velocities, as Grains3D does; `etotal`
 is time-centred instead (full-step velocities and the elastic energy of the same force evaluation) so
 that energy conservation can be checked to round-off of the scheme."""
+import array
 import math
 
 import numpy as np
@@ -28,7 +29,7 @@ class Thermo:
         self.style = list(DEFAULT_STYLE)
         self.float_format = "{:.6g}"
         self.header_printed_for = None
-        self.history = []          # (style, values) of every thermo line printed: sim.thermo_history
+        self.history = []          # [style, array of its lines' values] per stretch of one thermo_style
 
     # ----- values ---------------------------------------------------------------------------------
     def _ke(self, synchronised=False):
@@ -139,15 +140,22 @@ class Thermo:
 
     def line(self):
         values = [float(self.keyword(n)) for n in self.style]
-        self.history.append((tuple(self.style), values))
+        style = tuple(self.style)
+        if not self.history or self.history[-1][0] != style:
+            self.history.append([style, array.array("d")])       # 8 bytes a value: thermo 1 runs long
+        self.history[-1][1].extend(values)
         self.sim.print(" ".join(self._format(n, v) for n, v in zip(self.style, values)))
 
     def columns(self):
         """The thermo lines printed so far as {keyword: array}, one entry per line (NaN in the lines
         whose thermo_style lacked the keyword), keywords in the order they first appeared."""
         names = list(dict.fromkeys(n for style, _ in self.history for n in style))
-        table = {n: np.full(len(self.history), np.nan) for n in names}
-        for row, (style, values) in enumerate(self.history):
-            for n, v in zip(style, values):
-                table[n][row] = v
+        blocks = [np.array(values, dtype=np.float64).reshape(-1, len(style)) for style, values in self.history]
+        nlines = sum(len(b) for b in blocks)
+        table = {n: np.full(nlines, np.nan) for n in names}
+        row = 0
+        for (style, _), block in zip(self.history, blocks):
+            for k, n in enumerate(style):
+                table[n][row:row + len(block)] = block[:, k]
+            row += len(block)
         return table
