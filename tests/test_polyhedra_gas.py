@@ -145,11 +145,11 @@ def test_gas_drift_regression_guard_descantes(gas):
 # Two-body single-point collisions away from kinks (en = 1, mu = 0, no gravity). Hooke's force has a kink
 # where the bodies touch and where they part: leap-frog errs there by O(dt^2), with a coefficient set by
 # where the touch and the release fall between two steps (1D, leap-frog on a one-sided linear spring: up to
-# 1.08 (h / 2)^2 of the normal motion's energy over all phases, h = omega dt). One collision's change thus
-# jumps about as dt halves (measured ratios 5.9 and 2.7 for one edge/edge collision at a fixed phase of the
-# touch). So each dt is a grid of PHASES x PHASES runs of the same collision: the touch at (k + 1/2) /
-# PHASES of a step, and the time step T_c / (n + j / PHASES), which moves the release's phase through a
-# step; the rms over the grid falls as dt^2.
+# 1.08 (h / 2)^2 of the normal motion's energy over all phases, h = omega dt). One run's change thus jumps
+# about as dt halves (measured on single runs of the grids below: ratios 2.7 and 6.9 for the vertex/face
+# collision, 1.6 and 34 for the edge/edge one). So each dt is a grid of PHASES x PHASES runs of the same
+# collision: the touch at (k + 1/2) / PHASES of a step, and the time step T_c / (n + j / PHASES), which
+# moves the release's phase through a step; the rms over the grid falls as dt^2.
 PHASES = 6
 LEAD = 5                    # whole steps of free flight before the touch
 
