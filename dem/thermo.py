@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from .errors import DemError, did_you_mean
+from .quantities import THERMO
 
 DEFAULT_STYLE = ["step", "time", "atoms", "ke", "erot", "contacts", "cn", "maxov", "pct", "tps", "eta"]
 INT_KEYWORDS = {"step", "atoms", "contacts", "lost", "nbuild"}
@@ -105,18 +106,15 @@ class Thermo:
             "tpcpu": lambda: up.progress()[1] * (up.dt or 0.0),
             "cpuremain": lambda: up.progress()[2],
         }
-        if name in simple:
+        if name in THERMO:                 # the table of keywords and their units (dem/quantities.py)
             return simple[name]()
-        raise DemError(f"unknown thermo keyword '{name}'{did_you_mean(name, list(simple))}")
+        raise DemError(f"unknown thermo keyword '{name}'{did_you_mean(name, list(THERMO))}")
 
     def check_style(self, words):
         for w in words:
             if w.startswith(("v_", "f_", "c_")):
                 continue
-            if w not in INT_KEYWORDS | set(DEFAULT_STYLE) | {"pe", "etotal", "lost", "nbuild", "xlo", "xhi",
-                                                             "ylo", "yhi", "zlo", "zhi", "lx", "ly", "lz",
-                                                             "vol", "cpu", "dt", "time", "spcpu", "tpcpu",
-                                                             "cpuremain", "jpct", "jeta"}:
+            if w not in THERMO:
                 self.keyword(w)   # raises with a suggestion
 
     # ----- lines ----------------------------------------------------------------------------------

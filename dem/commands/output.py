@@ -44,7 +44,10 @@ class ThermoStyle(Command):
     `(pct and eta: of this run, steps 0 to 60000; jpct and jeta: of the job (run 1 of 4, 235000 steps
     in all), jeta at this run's speed)`, or `...; jpct and jeta: nan, the job's length is not known
     (line 12 'run ${n}' reads variables that change before it (n))`.
-    Default (`one`): step time atoms ke erot contacts cn maxov pct tps eta."""
+    Default (`one`): step time atoms ke erot contacts cn maxov pct tps eta.
+    Each keyword's quantity and SI unit (ke: J, time: s, ...) are in dem/quantities.py; computes and
+    fixes declare those of their values (compute repose: degrees); fix print/series writes them into
+    its file's header and dem-plot labels its panels with them."""
     style = "thermo_style"
     usage = "custom keywords... | one"
 
