@@ -13,13 +13,14 @@ from .errors import DemError
 from .job_scan import STEP, scan
 
 NAN = float("nan")
+FROM_PYTHON = "a run started from Python (sim.run, sim.command), not by a script"
 
 
 class Job:
     def __init__(self, sim):
         self.sim = sim
         self.plan = None
-        self.reason = "runs started from Python are no script's job"
+        self.reason = FROM_PYTHON
         self.done = 0            # steps of the job's runs that have ended (run ... every: its chunks)
         self.seconds = 0.0       # their loop time
         self.next_run = 0        # index in the plan's runs of the next run command
@@ -33,7 +34,7 @@ class Job:
 
     def end(self):
         self.plan, self.total = None, None
-        self.reason = "runs started from Python are no script's job"
+        self.reason = FROM_PYTHON
 
     # ----- its runs -------------------------------------------------------------------------------
     def start_run(self, lineno, nsteps):

@@ -116,7 +116,8 @@ def test_python_api_runs_are_no_job(tmp_path):
         sim.command("run 10")
         jpct = sim.thermo_history()["jpct"]
     notes = [ln for ln in log.read_text().splitlines() if ln.startswith("(pct and eta")]
-    assert len(notes) == 2 and all("runs started from Python are no script's job" in n for n in notes)
+    assert len(notes) == 2 and all("(a run started from Python (sim.run, sim.command), not by a script)" in n
+                                     for n in notes)
     assert all(math.isnan(v) for v in jpct)
 
 
