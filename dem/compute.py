@@ -32,6 +32,8 @@ class Compute:
     vector_names = ()
     tallies = ()          # per-particle contact tallies read (dem/tally.py: "stress", "types", "count")
     coords = None         # the coordinate of each vector element where it has one (rdf: r), else None
+    scalar_quantity = None    # (quantity, unit) of c_ID, for plot labels (dem/quantities.py)
+    vector_quantities = ()    # the same of c_ID[k], k = 1.. (fewer or none: not declared)
 
     def __init__(self, sim, cid, group, args):
         self.sim = sim
@@ -90,6 +92,12 @@ class Compute:
             raise DemError(f"c_{self.id}[{index}]: index out of range 1..{self.size_vector}"
                            + (f" ({', '.join(self.vector_names)})" if self.vector_names else ""))
         return float(self.vector()[index - 1])
+
+    def quantity(self, index=None):
+        """(quantity, unit) of c_ID (index None) or c_ID[index], or None where not declared."""
+        if index is None:
+            return self.scalar_quantity if self.has_scalar else None
+        return self.vector_quantities[index - 1] if 0 < index <= len(self.vector_quantities) else None
 
     def group_mask(self, n=None):
         atom = self.sim.atom

@@ -60,6 +60,9 @@ class Fix:
         """Extra thermo keywords: {name: value}."""
         return {}
 
+    # name of a thermo value: (quantity, unit), for plot labels (dem/quantities.py)
+    thermo_quantities = {}
+
     def state(self):
         return {}
 

@@ -153,11 +153,22 @@ class Input:
     # -- public interface ----------------------------------------------------------------------------------
     def file(self, path):
         """Run a whole script file."""
-        self._run(_Source.from_file(path))
+        self._job(_Source.from_file(path))
 
     def lines(self, text, name="<string>"):
         """Run several lines of text; errors are reported as name:line."""
-        self._run(_Source(name, text.splitlines()))
+        self._job(_Source(name, text.splitlines()))
+
+    def _job(self, source):
+        """A script read from outside any script is a job: its runs are scanned first (jpct, jeta)."""
+        if self._stack:
+            self._run(source)
+            return
+        self.sim.job.begin(source.name, source.lines)
+        try:
+            self._run(source)
+        finally:
+            self.sim.job.end()
 
     def one(self, line):
         """Run one command (as from sim.command); inside a running script it keeps that script's location."""
@@ -191,6 +202,11 @@ class Input:
             return None
         source = self._stack[-1]
         return f"{source.name}:{source.lineno}"
+
+    @property
+    def script_line(self):
+        """Line of the command being run when it is read from the outermost script, else None."""
+        return self._stack[0].lineno if len(self._stack) == 1 else None
 
     def find_file(self, path):
         """A file a command reads: `path` as given (relative to the folder dem runs in), or else relative to

@@ -13,6 +13,7 @@ from .errors import DemError
 from .files import open_output
 from .group import Groups
 from .input import Input
+from .job import Job
 from .modify import Modify
 from .neighbor import Neighbor
 from .output import Output
@@ -63,6 +64,7 @@ class Sim:
         self.output = Output(self)
         if log:
             self.output.names.claim("log", [log], "the log file")
+        self.job = Job(self)           # the script's runs, for jpct and jeta
         self.input = Input(self)
         self.units = "si"
         self.dimension = 3

@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from .errors import DemError, did_you_mean
+from .quantities import THERMO
 
 DEFAULT_STYLE = ["step", "time", "atoms", "ke", "erot", "contacts", "cn", "maxov", "pct", "tps", "eta"]
 INT_KEYWORDS = {"step", "atoms", "contacts", "lost", "nbuild"}
@@ -98,44 +99,45 @@ class Thermo:
             "pct": lambda: 100.0 * up.progress()[0],
             "tps": lambda: up.progress()[1],
             "eta": lambda: up.progress()[2],
+            "jpct": lambda: sim.job.progress()[0],
+            "jeta": lambda: sim.job.progress()[1],
             "cpu": lambda: up.elapsed(),
             "spcpu": lambda: up.progress()[1],                     # the LAMMPS names
             "tpcpu": lambda: up.progress()[1] * (up.dt or 0.0),
             "cpuremain": lambda: up.progress()[2],
         }
-        if name in simple:
+        if name in THERMO:                 # the table of keywords and their units (dem/quantities.py)
             return simple[name]()
-        raise DemError(f"unknown thermo keyword '{name}'{did_you_mean(name, list(simple))}")
+        raise DemError(f"unknown thermo keyword '{name}'{did_you_mean(name, list(THERMO))}")
 
     def check_style(self, words):
         for w in words:
             if w.startswith(("v_", "f_", "c_")):
                 continue
-            if w not in INT_KEYWORDS | set(DEFAULT_STYLE) | {"pe", "etotal", "lost", "nbuild", "xlo", "xhi",
-                                                             "ylo", "yhi", "zlo", "zhi", "lx", "ly", "lz",
-                                                             "vol", "cpu", "dt", "time", "spcpu", "tpcpu",
-                                                             "cpuremain"}:
+            if w not in THERMO:
                 self.keyword(w)   # raises with a suggestion
 
     # ----- lines ----------------------------------------------------------------------------------
     def _format(self, name, value):
         if name in INT_KEYWORDS:
             return f"{int(value):>10d}"
-        if name == "pct":
+        if name in ("pct", "jpct"):
             return f"{value:>6.1f}"
         if name == "eta":
             return f"{'-' if not math.isfinite(value) else f'{value:.0f}s':>7}"
+        if name == "jeta":             # seconds, no unit: a number (or nan) for the readers of the columns
+            return f"{value:>7.0f}"
         return f"{self.float_format.format(value):>13}"
 
     def header(self):
         cols = []
         for name in self.style:
-            width = 10 if name in INT_KEYWORDS else 6 if name == "pct" else 7 if name == "eta" else 13
+            width = 10 if name in INT_KEYWORDS else 6 if name in ("pct", "jpct") else \
+                7 if name in ("eta", "jeta") else 13
             cols.append(f"{name:>{width}}")
-        if {"pct", "eta"} & set(self.style):     # a script's later runs are not known before they start
-            up = self.sim.update
-            self.sim.print(f"(pct and eta: of this run, steps {up.first_step} to {up.last_step}; "
-                           "the script's later runs are not counted)")
+        note = self.sim.job.note(self.style)      # of this run or of the whole job
+        if note:
+            self.sim.print(note)
         self.sim.print(" ".join(cols))
 
     def line(self):

@@ -158,6 +158,7 @@ class Update:
                 self.running = False
             done = self.ntimestep - self.first_step
             loop = time.perf_counter() - (self.wall_start or t_setup)
+            sim.job.finished(done, loop)
             sim.output.finish(done, loop, time.perf_counter() - t_setup, full=post)
             if self.stop_signal:
                 SIGNAL_STATE.take()

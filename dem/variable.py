@@ -8,6 +8,7 @@ expression a fix evaluates every step is parsed once. Precedence follows LAMMPS,
 Binary operators associate left to right (``2^3^2`` is 64) and unary minus binds tighter than ``^``
 (``-2^2`` is 4), as in LAMMPS. Comparisons and logic give 1.0 or 0.0.
 """
+import contextlib
 import functools
 import math
 import re
@@ -352,6 +353,10 @@ STYLES = {cls.style: cls for cls in (_Equal, _Index, _Loop, _String)}
 _ADVANCING = ("index", "loop")
 
 
+class NotStatic(DemError):
+    """An expression evaluated under `Variables.static` asked for the simulation's state."""
+
+
 class Variables:
     """The named variables of one simulation. ``thermo(name) -> float`` answers bare names in expressions."""
 
@@ -359,6 +364,19 @@ class Variables:
         self._thermo = thermo
         self._vars = {}
         self._evaluating = set()  # equal variables being evaluated, to catch self-reference
+        self._used = None         # under `static`: the names of the variables read
+
+    @contextlib.contextmanager
+    def static(self):
+        """Evaluate ahead of time (the job's later run lengths): yields the set of the variables read, and a
+        bare name (step, time, c_ID...) raises NotStatic, since its value changes as the job goes on."""
+        outer, self._used = self._used, set()
+        try:
+            yield self._used
+        finally:
+            used, self._used = self._used, outer
+            if outer is not None:
+                outer |= used
 
     # -- definition ----------------------------------------------------------------------------------------
     def define(self, args):
@@ -395,6 +413,8 @@ class Variables:
 
     # -- values --------------------------------------------------------------------------------------------
     def _get(self, name):
+        if self._used is not None:
+            self._used.add(name)
         try:
             return self._vars[name]
         except KeyError:
@@ -434,6 +454,8 @@ class Variables:
             raise DemError(f"expression too deeply nested: {text[:40]}...") from None
 
     def thermo(self, name):
+        if self._used is not None:
+            raise NotStatic(f"'{name}' is a value of the simulation's state")
         if self._thermo is None:
             raise DemError(f"unknown name '{name}' in expression")
         return float(self._thermo(name))

@@ -6,6 +6,7 @@ import pytest
 
 from dem.errors import DemError, unknown
 from dem.input import Input
+from dem.job import Job
 from dem.output_names import OutputNames
 
 
@@ -51,6 +52,7 @@ class StubSim:
         self.calls, self.where, self.screen, self.log = [], [], [], []
         self.comm = types.SimpleNamespace(me=0)
         self.output = types.SimpleNamespace(names=OutputNames())     # print's file checks
+        self.job = Job(self)                                         # a script is scanned for its runs
         self.input = Input(self)
 
     def print(self, text, screen=True):

@@ -22,15 +22,32 @@ class ThermoStyle(Command):
     """thermo_style custom keyword ... | thermo_style one
 
     Keywords: step time dt atoms ke erot pe etotal contacts cn maxov lost nbuild xlo xhi ylo yhi zlo zhi
-    lx ly lz vol cpu pct tps eta spcpu tpcpu cpuremain, v_NAME (equal-style variable), f_ID[name] (fix
-    value), c_ID and c_ID[k] (compute value).
+    lx ly lz vol cpu pct tps eta jpct jeta spcpu tpcpu cpuremain, v_NAME (equal-style variable), f_ID[name]
+    (fix value), c_ID and c_ID[k] (compute value).
     `ke`/`erot` use the stored half-step velocities; `etotal` is time-centred (full-step kinetic energy
     plus the elastic energy of the same force evaluation). `contacts` counts particle-particle contacts,
     `cn` = 2 contacts / particles, `maxov` the largest overlap over the smaller diameter, and pct/tps/eta
     the progress of the run (percent, steps per second, seconds left); `cpu` the seconds since the run
     started. LAMMPS names work too: `spcpu` (= tps), `tpcpu` (simulated seconds per second), `cpuremain`
     (= eta, in seconds).
-    Default (`one`): step time atoms ke erot contacts cn maxov pct tps eta."""
+    `jpct`/`jeta`: the progress of the whole job, every run of the script given to `dem -in` (or
+    sim.file, sim.commands): percent of its steps done, and seconds left (a plain number, no `s`). jeta
+    is the job's steps left at the speed of the current run (a fill, a settling and a long rotation step
+    at different speeds: the current run is the best guess of the next ones), at the job's average speed
+    before the run has a speed of its own. The job's length is known where, at the start of each run,
+    every later `run N` has an N that is a number, or a `${name}`/`$(expression)` of variables defined
+    by then (-var included) that no command before that run changes, and that reads no value of the
+    simulation (step, c_ID...); `run N upto` counts from the step it will start at. It is not known with
+    a run inside an `if` or `run ... every`, a loop (`jump SELF` back) over a run, a jump forward or to
+    another file, an `include`, or runs started from Python (sim.run, sim.command): jpct and jeta are
+    then `nan` (a number still, for dem-plot and pandas). The thermo header says which: e.g.
+    `(pct and eta: of this run, steps 0 to 60000; jpct and jeta: of the job (run 1 of 4, 235000 steps
+    in all), jeta at this run's speed)`, or `...; jpct and jeta: nan, the job's length is not known
+    (line 12 'run ${n}' reads variables that change before it (n))`.
+    Default (`one`): step time atoms ke erot contacts cn maxov pct tps eta.
+    Each keyword's quantity and SI unit (ke: J, time: s, ...) are in dem/quantities.py; computes and
+    fixes declare those of their values (compute repose: degrees); fix print/series writes them into
+    its file's header and dem-plot labels its panels with them."""
     style = "thermo_style"
     usage = "custom keywords... | one"
 

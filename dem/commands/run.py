@@ -125,6 +125,7 @@ class Run(Command):
             raise a.error(f"stop {stop} must be >= the last step of this run ({last})")
         update.beginstep = update.ntimestep if start is None else start
         update.endstep = last if stop is None else stop
+        sim.job.start_run(sim.input.script_line, nsteps)
         if not every:
             update.run(nsteps, pre=pre, post=post)
             return

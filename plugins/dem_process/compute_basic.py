@@ -15,6 +15,7 @@ class ComputeKE(Compute):
     thermo `ke`. Example: `compute k all ke` then `thermo_style custom step c_k`."""
 
     style = "ke"
+    scalar_quantity = ("translational kinetic energy", "J")
 
     def __init__(self, sim, cid, group, args):
         super().__init__(sim, cid, group, args)
@@ -36,6 +37,7 @@ class ComputeERotate(Compute):
     frame for shaped particles."""
 
     style = "erotate"
+    scalar_quantity = ("rotational kinetic energy", "J")
 
     def __init__(self, sim, cid, group, args):
         super().__init__(sim, cid, group, args)
@@ -73,6 +75,9 @@ class ComputeCoord(Compute):
     style = "coord"
     size_vector = 4
     vector_names = ("Z", "Z_walls", "contacts", "wall_contacts")
+    scalar_quantity = ("coordination number", "-")
+    vector_quantities = (scalar_quantity, ("coordination number with walls", "-"), ("contacts", "-"),
+                         ("wall contacts", "-"))
 
     def __init__(self, sim, cid, group, args):
         super().__init__(sim, cid, group, args)
@@ -122,6 +127,15 @@ class ComputeVMean(Compute):
         if self.scale <= 0:
             raise a.error("scale must be > 0")
         self.drum_id = kw["drum"][0] if "drum" in kw else None
+
+    def quantity(self, index=None):
+        what = ("mean speed", "mean vx", "mean vy", "mean vz", "largest speed", "rms speed")[(index or 1) - 1] \
+            if (index or 1) <= self.size_vector else None
+        if what is None:
+            return None
+        if self.drum_id is not None:
+            return (f"{what} / (Omega R)", "-")
+        return (what, "m/s") if self.scale == 1.0 else (f"{what} / {self.scale:g} m/s", "-")
 
     def _scale(self):
         if self.drum_id is None:

@@ -116,6 +116,9 @@ class ComputeRepose(Compute):
     style = "repose"
     size_vector = 5
     vector_names = ("angle", "slope", "intercept", "points", "roughness")
+    scalar_quantity = ("angle of repose", "deg")
+    vector_quantities = (("signed angle of repose", "deg"), ("surface slope", "-"),
+                         ("surface height at the axis", "m"), ("surface points", "-"), ("surface roughness", "m"))
     usage = "DRUM-FIX-ID [bins N] [trim F]"
 
     def __init__(self, sim, cid, group, args):
@@ -163,6 +166,8 @@ class ComputeCorotate(Compute):
     style = "corotate"
     size_vector = 3
     vector_names = ("corotating", "corotating_top", "top")
+    scalar_quantity = ("fraction co-rotating", "-")
+    vector_quantities = (scalar_quantity, ("fraction co-rotating at the top", "-"), ("fraction at the top", "-"))
     usage = "DRUM-FIX-ID [tol T]"
 
     def __init__(self, sim, cid, group, args):

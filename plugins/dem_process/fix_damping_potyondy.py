@@ -28,6 +28,7 @@ class FixDampingPotyondy(Fix):
     Example: `fix calm all damping/potyondy alpha 0.7 stop 200000`."""
 
     style = "damping/potyondy"
+    thermo_quantities = {"power": ("rate of work of the damping", "W")}
     stages = Stage.POST_FORCE
 
     def __init__(self, sim, fid, group, args):

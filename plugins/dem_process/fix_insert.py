@@ -100,6 +100,8 @@ class FixInsert(Fix):
     """
 
     style = "insert"
+    thermo_quantities = {"inserted": ("particles inserted", "-"), "pending": ("particles to insert", "-"),
+                         "mass": ("mass inserted", "kg")}
     stages = Stage.PRE_EXCHANGE
     usage = ("SEED REGION-ID count N | volfrac PHI [every M] [per K | massrate Q] [start STEP] [radius ...] "
              "[shape NAME [scale ...] | mix NAME1 W1 ... [fractions mass|number]] [density RHO] [type T] "

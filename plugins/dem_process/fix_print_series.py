@@ -4,13 +4,15 @@ import os
 from dem.errors import DemError
 from dem.files import open_output
 from dem.fix import Fix, Stage
+from dem.quantities import describe, header_line
 
 
 class FixPrintSeries(Fix):
     """fix ID group print/series N FILE keyword ... [format FMT] [append yes|no]
 
     Writes a time series: every N steps one line `step time value ...` to FILE (a header line `# step
-    time keyword ...` first), the values being thermo keywords of any kind: `ke`, `cn`, `c_ID`,
+    time keyword ...` first, then `# quantity [unit]: ...` with what each column is, where known, for
+    dem-plot's labels), the values being thermo keywords of any kind: `ke`, `cn`, `c_ID`,
     `c_ID[k]`, `v_NAME`, `f_ID[name]`... Lines are written at the end of the step (the values of the
     state after the step, as thermo would print them) and at the start of a run when its step is a
     multiple of N (not twice). `format` is a Python or C float format (default %.10g); `append yes`
@@ -67,6 +69,8 @@ class FixPrintSeries(Fix):
             self.fh = open_output(self.path, f"fix {fid} print/series", "a" if append else "w")
             if not exists:
                 self.fh.write("# step time " + " ".join(words) + "\n")
+                columns = ["step", "time"] + words                # what each is, for dem-plot's labels
+                self.fh.write(header_line([describe(sim, w) for w in columns]) + "\n")
                 self.fh.flush()
 
     def setup_output(self):          # after the run's first force evaluation: the values thermo prints
