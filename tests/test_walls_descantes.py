@@ -92,8 +92,8 @@ def test_sliding_cube_friction_capped_by_coulomb():
 
 
 def test_law_keyword():
-    """`law` takes grains3d or descantes on both wall fixes; Descantes' law keeps no history (no spring)."""
-    with pytest.raises(dem.errors.DemError, match="law must be grains3d or descantes, got 'hertz'"):
+    """`law` takes grains3d, descantes or volume on both wall fixes; Descantes' law keeps no history (no spring)."""
+    with pytest.raises(dem.errors.DemError, match="law must be grains3d or descantes or volume, got 'hertz'"):
         _sim("hertz", 0.002)
     sim = _sim("descantes", 0.002, friction="mu 0.5 gamma_t 1e4 ks 2e4")
     assert not sim.modify.find("floor").use_history

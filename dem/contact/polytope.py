@@ -13,7 +13,7 @@ from collections import namedtuple
 import numpy as np
 
 from ..shapes.topology import pack_topology
-from . import _polytope
+from . import _polytope, _volume
 
 AXIS_NONE, AXIS_FACE_A, AXIS_FACE_B, AXIS_EDGE = (int(a) for a in _polytope.AxisKind)
 PC_NONE, PC_VERTEX_FACE, PC_EDGE_EDGE, PC_EDGE_FACE, PC_FACE_FACE = (int(c) for c in _polytope.PolyContactType)
@@ -71,3 +71,20 @@ def contact(shape_a, x_a, q_a, shape_b, x_b, q_b, ftol=None, box_path=True):
     if not r[0]:
         return None
     return PolytopeContact(r[1], r[2], r[6], r[7], r[3], r[4], r[5], r[8], r[9])
+
+
+Overlap = namedtuple("Overlap", "volume area moment centroid")
+
+
+def overlap_volume(shape_a, x_a, q_a, shape_b, x_b, q_b):
+    """Overlap(volume, area, moment, centroid) of two posed polytopes (dem/contact/_volume.pyx): the volume
+    V of their intersection, its gradients S = dV/dx_a and M = dV/dtheta_a (about x_a), its centroid (nan
+    when apart)."""
+    view = _pair(shape_a, shape_b)
+    return Overlap(*_volume.pair(view, 0, 1, _vec(x_a, 3), _vec(q_a, 4), _vec(x_b, 3), _vec(q_b, 4)))
+
+
+def overlap_halfspace(shape, x, q, normal, offset):
+    """Overlap of a posed polytope and the half-space normal . x <= offset (a plane wall's solid side)."""
+    view = _pair(shape, shape)
+    return Overlap(*_volume.halfspace(view, 0, _vec(x, 3), _vec(q, 4), _vec(normal, 3), float(offset)))

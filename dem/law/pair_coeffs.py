@@ -36,9 +36,10 @@ class PairCoefficients:
         tj = parse_types(words[1], nt, "type J")
         same = any(a in tj for a in ti)
         law = parse(words[2:], "pair_coeff", same_type=same)
-        if law["normal"] != "hooke" and getattr(self, "law", "grains3d") == "descantes":
-            raise DemError(f"pair_coeff: pair_style {self.style} law descantes is a Hooke law (kn, en); it does "
-                           f"not take model hertz")
+        style_law = getattr(self, "law", "grains3d")
+        if law["normal"] != "hooke" and style_law in ("descantes", "volume"):
+            raise DemError(f"pair_coeff: pair_style {self.style} law {style_law} is a Hooke law (kn, en); it does "
+                           f"not take normal {law['normal']}")
         if frictionless(law):
             warn_frictionless(self.sim, self, "pair_coeff")
         r = row(law) if has_material(law) else np.zeros(NCOEFF)

@@ -42,8 +42,9 @@ class WallCoefficients:
                                f"{self.wall_type} I; it takes no coefficients of its own ({' '.join(words)})")
         law = parse(words, what, required=()) if words else {}
         if law.get("normal", "hooke") != "hooke":
-            if self.contact_law == "descantes":
-                raise DemError(f"{what}: law descantes is a Hooke law (kn, en); it does not take model hertz")
+            if self.contact_law in ("descantes", "volume"):
+                raise DemError(f"{what}: law {self.contact_law} is a Hooke law (kn, en); it does not take normal "
+                               f"{law['normal']}")
         elif law and not {"kn", "en"} <= set(law):
             raise DemError(f"{what}: give both kn and en (or neither, to use pair_coeff I I)")
         if frictionless(law):
@@ -100,9 +101,9 @@ class WallCoefficients:
         descantes, a Hooke law."""
         if not np.any(is_hertz_row(self.table[:, 1:])):
             return
-        if self.contact_law == "descantes":
-            raise DemError(f"{self._where()}fix {self.id} {self.style}: law descantes is a Hooke law (kn, en); "
-                           f"it does not take the model hertz of pair_coeff (give kn and en on the fix line)")
+        if self.contact_law in ("descantes", "volume"):
+            raise DemError(f"{self._where()}fix {self.id} {self.style}: law {self.contact_law} is a Hooke law (kn, "
+                           f"en); it does not take the model hertz of pair_coeff (give kn and en on the fix line)")
 
     def min_contact_time(self):
         atom = self.sim.atom

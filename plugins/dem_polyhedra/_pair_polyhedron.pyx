@@ -38,7 +38,9 @@ from dem.contact._polytope cimport (Polytope, TopoTable, SatResult, PolyContact,
 from dem.shapes._support cimport ShapeRef, Kind, quat_to_rot, NPARAM
 from dem.shapes._table cimport ShapeView, TableView, body_ref, equivalent_radius, round_body
 from dem.law.apply cimport Body, apply_pair, bind_body, contact_radius
-from dem.law.row cimport XI_WIDTH
+from dem.law.row cimport XI_WIDTH, NCOEFF
+from dem.contact._volume cimport OverlapVolume, overlap_volume
+from dem.law.volume cimport reference_area, volume_record, volume_row, volume_couple, volume_twist
 
 ctypedef cnp.int64_t i64
 
@@ -153,14 +155,16 @@ cdef inline i64 _match(const KeyedView* h, i64 k, const double* b, double tol2, 
 
 def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, const double[:, :, ::1] coeff,
             ShapeView shapes, const double[:, ::1] rot, const double[::1] move,
-            double[::1] margin, double[::1] stats, KeyedBuffers hist, bint use_xi, double ftol_rel, double dt,
-            bint advance, double[:, ::1] rec, i64[:, ::1] rec_ij, i64[::1] nrec, i64 start):
+            double[::1] margin, double[::1] stats, KeyedBuffers hist, bint use_xi, bint volume, double ftol_rel,
+            double dt, bint advance, double[:, ::1] rec, i64[:, ::1] rec_ij, i64[::1] nrec, i64 start):
     """Adds the contact forces and torques of list entries from `start` on; returns -1, or the entry to
     resume from when the history buffer is full (dem/_history.pxd). stats receives STATS (summed; the
     caller resets them once per step). With rows in `rec`, every contact point is recorded there (RECW
     columns; rec_ij: the local indices i, j and the type, 1-4 as PolyContactType, 5 a pair with a
     sphere), nrec[0] the rows used; an entry whose points do not fit stops the pass (nrec[1] = 1, the
-    entry returned, nothing of it applied): the caller grows the buffers and resumes there.
+    entry returned, nothing of it applied): the caller grows the buffers and resumes there. With `volume`
+    (the style's `law volume`, dem/law/volume.pxd) two polytopes touch at one point: the overlap volume's
+    record, its own stiffness and the couple about the normal.
 
     rot[i] (scale_i R_i) and move[i] (how far any point of particle i moved since the last call) come from
     dem_convex's poses, once per step. margin[k] caches a lower bound of the gap of entry k (bounding
@@ -181,6 +185,10 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
     cdef double bpt[3]
     cdef double out[6]
     cdef double r2, rsum, dist, meff, weight, si_scale, sj_scale, reff, tol2, gap, inv_si
+    cdef double vol, varea, aref, req_i, req_j
+    cdef double couple[3]
+    cdef double vrow[NCOEFF]
+    cdef OverlapVolume ov
     cdef const double* cf
     cdef double maxov = stats[2]
     cdef bint ri, rj
@@ -221,6 +229,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 sj = P.shape[j]
                 rj = round_body(T, sj)
                 typ = -1
+                vol = 0.0
                 if ri and rj:                  # two spheres: analytic
                     dist = sqrt(r2)
                     if dist == 0.0:
@@ -252,11 +261,18 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     if not npt:
                         margin[k] = -sat.depth - MARGIN_SAFETY * rsum
                     typ = pc.type
-                    for q in range(npt):
-                        con[q].delta = pc.depth
-                        for d in range(3):
-                            con[q].n[d] = pc.n[d]
-                            con[q].p[d] = pc.p[3 * q + d]
+                    if volume and npt:         # one record from the overlap volume (none without volume)
+                        if (overlap_volume(&A, Ri, si_scale, &P.x[3 * i], &B, Rj, sj_scale, &P.x[3 * j], &ov) <= 0
+                                or not volume_record(&ov, &P.x[3 * i], &con[0], couple, &varea)):
+                            continue
+                        vol = ov.volume
+                        npt = 1
+                    else:
+                        for q in range(npt):
+                            con[q].delta = pc.depth
+                            for d in range(3):
+                                con[q].n[d] = pc.n[d]
+                                con[q].p[d] = pc.p[3 * q + d]
                 if npt == 0:
                     continue
                 if rec.shape[0] > 0 and nrec[0] + npt > rec.shape[0]:
@@ -298,8 +314,9 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                         con[q].key = q
                         recs[q] = NULL
                 dist = 2.0 * (P.radius[i] if P.radius[i] < P.radius[j] else P.radius[j])
-                if con[0].delta > maxov * dist:
-                    maxov = con[0].delta / dist
+                gap = pc.depth if vol > 0.0 else con[0].delta     # the penetration (law volume: not h)
+                if gap > maxov * dist:
+                    maxov = gap / dist
                 stats[0] += 1.0
                 stats[1] += npt
                 count_contact(P, i, j, npt)
@@ -318,13 +335,21 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 bind_body(&BA, P, i)
                 bind_body(&BB, P, j)
                 cf = &coeff[P.type[i], P.type[j], 0]
-                reff = contact_radius(cf, ri and rj, equivalent_radius(T, si, P.radius[i]),
-                                      equivalent_radius(T, sj, P.radius[j]))
+                req_i = equivalent_radius(T, si, P.radius[i])
+                req_j = equivalent_radius(T, sj, P.radius[j])
+                reff = contact_radius(cf, ri and rj, req_i, req_j)
                 for q in range(npt):
-                    con[q].weight = weight
-                    con[q].central = False
-                    con[q].inertia = 0.0
-                    stats[3] += apply_pair(cf, &con[q], &BA, &BB, meff, reff, recs[q], dt, advance, out)
+                    if vol > 0.0:
+                        aref = reference_area(req_i, req_j)
+                        volume_row(cf, varea, aref, vrow)
+                        stats[3] += apply_pair(vrow, &con[q], &BA, &BB, meff, reff, recs[q], dt, advance, out)
+                        volume_couple(cf, vol, aref, couple, &BA, &BB, False)
+                        volume_twist(vrow, varea, meff, &con[q], out, &BA, &BB, False)
+                    else:
+                        con[q].weight = weight
+                        con[q].central = False
+                        con[q].inertia = 0.0
+                        stats[3] += apply_pair(cf, &con[q], &BA, &BB, meff, reff, recs[q], dt, advance, out)
                     if rec.shape[0] > 0:
                         r = nrec[0]
                         for d in range(3):

@@ -3,7 +3,8 @@ import numpy as np
 
 from dem.shapes import command as shape_command
 from dem._particles import ParticleView
-from dem.errors import DemError
+from dem.contact import _volume
+from dem.errors import DemError, did_you_mean
 from dem.history import KeyedHistory
 from dem.law.pair_coeffs import PairCoefficients
 from dem.pair import Pair
@@ -12,12 +13,12 @@ from dem_convex import _pair_convex
 from . import _pair_polyhedron
 
 TYPES = ("vertex_face", "edge_edge", "edge_face", "face_face", "sphere")   # "sphere": a pair with a sphere
-LAWS = ("grains3d", "descantes")     # the `law` keyword (dem.law.descantes)
+LAWS = ("grains3d", "descantes", "volume")    # the `law` keyword (dem.law.descantes, dem/law/volume.pxd)
 FTOL = 1e-9      # contacting-feature tolerance, per unit of the two bounding radii (dem.contact.polytope)
 
 
 class PairPolyhedronMultipoint(PairCoefficients, Pair):
-    """pair_style polyhedron/multipoint [law grains3d|descantes] [ftol FTOL]
+    """pair_style polyhedron/multipoint [law grains3d|descantes|volume] [ftol FTOL]
 
     pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [beta_t BT] [ks KS]
     or `model hertz E .. nu .. en .. mu ..`: R* from the spheres of equal volume (docs/hertz.md)
@@ -39,6 +40,14 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
     Descantes' Table 2, gamma_t = gamma_n critical; no spring: ks is not used, no history). Walls choose
     their own law: `fix ... wall/plane ... point multipoint law descantes` for the same law at the wall.
 
+    `law volume` (energy-conserving, for collisional flows; dem/law/volume.pxd, docs/polyhedra.md): two
+    polytopes touch at one point through the overlap volume V of the two bodies, the potential
+    U = 1/2 kn (V / A_ref)^2 with A_ref = pi r_i r_j (r: radii of the spheres of equal volume), so a flat
+    contact of area A_ref has Hooke's kn; the force and torque are its exact gradient (the area vector and
+    moment of the overlap's surface), damping from en and friction (the row's tangential part, capped by
+    Coulomb) at the point on the force's line nearest the overlap's centroid, plus a twisting friction of
+    the overlap area. Walls: `fix ... wall/plane ... law volume` (and wall/drum). Spheres keep one point
+    and the Hooke law.
     With a tangential spring (ks > 0, law grains3d) every point keeps its own history, matched from step
     to step by its position in the body frame of the list's owner (not by index), so that it survives a
     face/face contact turning edge/face and back (dem_polyhedra/_pair_polyhedron.pyx). Other shapes
@@ -62,7 +71,7 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         super().__init__(sim, args)
         self.ftol = FTOL
         self.law = "grains3d"
-        usage = "pair_style polyhedron/multipoint [law grains3d|descantes] [ftol FTOL]"
+        usage = "pair_style polyhedron/multipoint [law grains3d|descantes|volume] [ftol FTOL]"
         i = 0
         while i < len(args):
             if i + 1 >= len(args) or args[i] not in ("ftol", "law"):
@@ -70,7 +79,8 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
                                f"usage: {usage}")
             if args[i] == "law":
                 if args[i + 1] not in LAWS:
-                    raise DemError(f"pair_style polyhedron/multipoint: law is grains3d or descantes, got '{args[i + 1]}'")
+                    raise DemError(f"pair_style polyhedron/multipoint: law is {', '.join(LAWS)}, got '{args[i + 1]}'"
+                                   f"{did_you_mean(args[i + 1], LAWS)}")
                 self.law = args[i + 1]
             else:
                 try:
@@ -111,7 +121,11 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
             if s < 0:
                 continue
             shp = rows[s]
-            if poly[s] or (sphere is not None and sphere[s]):
+            if poly[s]:
+                if self.law == "volume":
+                    _volume_fits(shp, sim.shapes.names[s])
+                continue
+            if sphere is not None and sphere[s]:
                 continue
             raise DemError(f"pair_style polyhedron/multipoint: shape '{getattr(shp, 'name', s)}' is neither a "
                            "sharp polytope (box, cube, polyhedron, tetrahedron, pinacoid) nor a sphere")
@@ -126,7 +140,7 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         def run(start):
             resume = _pair_polyhedron.compute(
                 view, nb.offsets, nb.neigh, self.table, self.shape_view, w.rot, w.move, w.margin,
-                st, buffers, use_xi, self.ftol, self.sim.update.dt, advance, self._rec, self._rec_ij, self._nrec, start)
+                st, buffers, use_xi, self.law == "volume", self.ftol, self.sim.update.dt, advance, self._rec, self._rec_ij, self._nrec, start)
             if self._nrec[1]:                  # the points buffer was full: grow it, resume at that entry
                 self._nrec[1] = 0
                 self._grow_points(2 * len(self._rec) + 16 * MAXP)
@@ -189,6 +203,15 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
             for key, v in s.items():
                 if key != "max_overlap":
                     self.stats[key] += v
+
+
+def _volume_fits(shape, name):
+    """law volume clips faces in fixed buffers (dem/contact/_volume.pyx)."""
+    topo = shape.topology
+    if topo.nf > _volume.MAXF or max(len(f) for f in topo.faces) > _volume.MAXFV:
+        raise DemError(f"pair_style polyhedron/multipoint law volume: shape '{name}' has {topo.nf} faces "
+                       f"(at most {_volume.MAXF}) or a face of more than {_volume.MAXFV} vertices",
+                       hint="law grains3d or descantes take it")
 
 
 from dem import _history  # noqa: E402

@@ -23,7 +23,10 @@ from dem.shapes._table cimport (ShapeView, TableView, body_ref, equivalent_radiu
 from dem.law.apply cimport Body, apply_wall, bind_body, contact_radius
 from dem.law.law cimport forget, holds
 from dem.law.rolling cimport sphere_rolling_inertia
-from dem.law.row cimport C_ETA_ROLL
+from dem.law.row cimport C_ETA_ROLL, NCOEFF
+from dem.contact._polytope cimport Polytope, polytope_ref
+from dem.contact._volume cimport OverlapVolume, overlap_halfspace
+from dem.law.volume cimport reference_area, volume_record, volume_row, volume_couple, volume_twist
 
 ctypedef cnp.int64_t i64
 
@@ -43,6 +46,9 @@ SURFACE = {"CYLINDER": S_CYLINDER, "A": S_A, "SIDE": S_SIDE, "POS": S_POS, "R": 
            "SPIN": S_SPIN, "OMEGA": S_OMEGA, "NCOL": S_NCOL}
 STAT = {"CONTACTS": W_CONTACTS, "MAXOV": W_MAXOV, "ENERGY": W_ENERGY, "TORQUE": W_TORQUE, "WORST_I": W_WORST_I,
         "WORST_W": W_WORST_W, "WORST_GAP": W_WORST_GAP, "BEHIND": W_BEHIND, "NSTAT": W_NSTAT}
+
+cdef enum:
+    VOL_COLS = 5           # law volume, per contact point: V, |S|, the unit couple (3)
 
 cdef double TIE_BIAS = 1e-9          # relative tilt of the support direction that breaks ties (plane_touch)
 cdef double ZERO[3]
@@ -95,7 +101,7 @@ cdef inline int _vertices_beyond(const ShapeRef* S, const double* R, const doubl
 
 def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const double[:, :, ::1] coeff,
           ShapeView shapes, double[:, ::1] xi, int hw, bint use_history, bint bonds, double dt, bint advance,
-          int point, bint average, double[::1] stats):
+          int point, bint average, bint volume, double[::1] stats):
     """surfaces: rows of S_NCOL values (SURFACE). coeff[w, type]: the law row of surface w. xi: hw history
     values (the law's width) per surface and piece per particle (piece c of surface w at hw (c nw + w);
     pieces beyond the array's width keep no history); bonds: whether a row acts beyond contact once touched.
@@ -103,7 +109,9 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
     points beyond the surface, 2 multipoint: a polytope (box, polyhedron) touches at every vertex beyond
     the surface, each with the deepest overlap and a weight 1/alpha, alpha the particle's points against
     that surface (Descantes 2022 eq. 3; no tangential spring: the points are not tracked). average: Model B
-    over the pieces touching one surface. A sphere whose row acts beyond contact (JKR, a bridge) keeps its
+    over the pieces touching one surface. volume (the fix's `law volume`, dem/law/volume.pxd): a sharp
+    polytope (or piece) touches through its overlap volume with the half-space behind the surface (planes
+    only: wall/drum refuses the law), at one point. A sphere whose row acts beyond contact (JKR, a bridge) keeps its
     contact after it leaves the surface while bonded and within the row's reach. stats: the W_ sums (STAT)."""
     cdef Particles particles = view.p          # local copies: no call can change them (kept in registers)
     cdef const Particles* P = &particles
@@ -126,7 +134,11 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
     cdef Surface* surf = <Surface*>malloc(max(nw, 1) * sizeof(Surface))
     cdef bint centroid = point == 1, multi = point == 2
     cdef int maxp = 1, nvq, k
-    cdef double depth
+    cdef double depth, scale, aref
+    cdef double Ru[9]
+    cdef double vrow[NCOEFF]
+    cdef Polytope poly
+    cdef OverlapVolume vo
     for q in range(T.nrows):           # room for the points of one particle against one surface
         nvq = 0
         for c in range(ncomponents(T, q)):
@@ -138,10 +150,12 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
             maxp = nvq
     cdef Contact* pts = <Contact*>malloc(maxp * sizeof(Contact))
     cdef int* ptc = <int*>malloc(maxp * sizeof(int))
-    if surf == NULL or pts == NULL or ptc == NULL:
+    cdef double* pvol = <double*>malloc(maxp * VOL_COLS * sizeof(double))    # law volume: V, |S|, couple
+    if surf == NULL or pts == NULL or ptc == NULL or pvol == NULL:
         free(surf)
         free(pts)
         free(ptc)
+        free(pvol)
         raise MemoryError()
     cdef const Surface* W
     cdef ShapeRef S
@@ -183,6 +197,7 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
                     for d in range(3):
                         pts[0].p[d] = x[d] - pts[0].arm_a * pts[0].n[d]
                     ptc[0] = 0
+                    pvol[0] = 0.0
                     npt = 1
                 else:
                     if not posed:
@@ -206,11 +221,31 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
                             if use_history and advance and c < hpieces:
                                 forget(&xi[i, hw * (c * nw + w)], hw)
                             continue
+                        pvol[VOL_COLS * npt] = 0.0
+                        if volume and (S.kind == BOX or S.kind == POLYHEDRON) and S.params[MARGIN] == 0.0:
+                            # the half-space behind the plane, n . y <= n . q + delta / 2 (q lies midway in
+                            # the overlap)
+                            polytope_ref(&T.topo, row, &poly)
+                            scale = P.radius[i] / T.radius[s]
+                            for d in range(9):
+                                Ru[d] = Rc[d] / scale
+                            depth = pts[npt].delta
+                            if (overlap_halfspace(&poly, Ru, scale, xc, pts[npt].n,
+                                                  pts[npt].n[0] * pts[npt].p[0] + pts[npt].n[1] * pts[npt].p[1]
+                                                  + pts[npt].n[2] * pts[npt].p[2] + 0.5 * depth, &vo) <= 0
+                                    or not volume_record(&vo, xc, &pts[npt], &pvol[VOL_COLS * npt + 2],
+                                                         &pvol[VOL_COLS * npt + 1])):
+                                continue
+                            pvol[VOL_COLS * npt] = vo.volume
+                            ptc[npt] = c
+                            npt += 1
+                            continue
                         if multi and (S.kind == BOX or S.kind == POLYHEDRON) and S.params[MARGIN] == 0.0:
                             k = _vertices_beyond(&S, Rc, xc, W, pts[npt].n, pts[npt].delta, 1e-9 * P.radius[i],
                                                  &pts[npt])
                             for q in range(npt, npt + k):
                                 ptc[q] = -1          # no spring
+                                pvol[VOL_COLS * q] = 0.0
                             npt += k
                             continue
                         ptc[npt] = c
@@ -246,17 +281,26 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
                     # the rolling inertia about the contact, I + m r^2 (the EPSD dashpot: spheres only)
                     con.inertia = sphere_rolling_inertia(P.rmass[i], P.radius[i]) if (
                         sphere and cf[C_ETA_ROLL] > 0.0) else 0.0
+                    if pvol[VOL_COLS * q] > 0.0:     # law volume: the contact's own row and its couple
+                        con.weight = 1.0
+                        aref = reference_area(equivalent_radius(T, s, P.radius[i]), -1.0)
+                        volume_row(cf, pvol[VOL_COLS * q + 1], aref, vrow)
+                        volume_couple(cf, pvol[VOL_COLS * q], aref, &pvol[VOL_COLS * q + 2], &A, &B, True)
+                        cf = vrow
                     energy += apply_wall(cf, &con, &A, &B,
                                          P.rmass[i] if average or npt == 1 else P.rmass[i] / npt,
                                          contact_radius(cf, sphere, equivalent_radius(T, s, P.radius[i]), -1.0),
                                          &xi[i, hw * (ptc[q] * nw + w)] if 0 <= ptc[q] < hpieces else NULL,
                                          dt, advance, out)
+                    if pvol[VOL_COLS * q] > 0.0:
+                        volume_twist(vrow, pvol[VOL_COLS * q + 1], P.rmass[i], &con, out, &A, &B, True)
                     if W.spin >= 0:   # torque about the turning axis: e . (p x F) + e . rolling torque
                         torque += p[(W.spin + 1) % 3] * out[(W.spin + 2) % 3] - p[(W.spin + 2) % 3] * out[(W.spin + 1) % 3]
                         torque += out[3 + W.spin]
     free(surf)
     free(pts)
     free(ptc)
+    free(pvol)
     stats[W_CONTACTS] = ncont
     stats[W_MAXOV] = maxov
     stats[W_ENERGY] = energy

@@ -114,7 +114,8 @@ class FixWallDrum(WallFix, Fix):
                 self.carry = (a[i + 1], sim.groups.bit(a[i + 1]))
                 i += 2
             else:
-                i = wall_keyword(self, a, i, law)
+                # law volume needs a half-space: the curved drum is not one (the planes of wall/plane are)
+                i = wall_keyword(self, a, i, law, laws=("grains3d", "descantes"))
                 if i is None:
                     known = ["rpm", "omega", "ramp", "ends", "carry"] + WALL_KEYWORDS
                     raise a.error(f"unknown keyword '{key}'{did_you_mean(key, known)}")

@@ -149,7 +149,8 @@ class FixWallMesh(WallCoefficients, Fix):
                 self.ramp = a.float(i + 1, "ramp", nonneg=True)
                 i += 2
             else:
-                i = wall_keyword(self, a, i, law, modes=("deepest", "multipoint"))
+                # law volume clips a polytope by a half-space: a mesh face is not one (plane and drum walls)
+                i = wall_keyword(self, a, i, law, modes=("deepest", "multipoint"), laws=("grains3d", "descantes"))
                 if i is None:
                     known = ["scale", "rotate", "move", "linear", "turn", "ramp", "table"] + WALL_KEYWORDS
                     raise a.error(f"unknown keyword '{key}'{did_you_mean(key, known)}")

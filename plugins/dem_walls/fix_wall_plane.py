@@ -11,7 +11,7 @@ from .wall_fix import POINT_MODES, S, WallFix, law_name, plane
 class FixWallPlane(WallFix, Fix):
     """fix ID group wall/plane xplane|yplane|zplane LO HI [...] [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR]
         [model hertz E E nu NU en EN mu MU mu_roll MR] [normal|damping|tangential|rolling PART ...] [type T]
-        [point deepest|centroid|multipoint] [law grains3d|descantes]
+        [point deepest|centroid|multipoint] [law grains3d|descantes|volume]
 
     Fixed planar walls. Each `xplane LO HI` adds a wall at x = LO facing +x and one at x = HI facing -x;
     NULL skips one (`zplane 0 NULL`: a floor only). Particles touching a wall feel the Grains3D law with
@@ -32,7 +32,10 @@ class FixWallPlane(WallFix, Fix):
     dem.law.descantes): F_n = max(0, kn delta - nu_n U_n) / alpha (no attraction, nu_n from en with
     m_ij = m_i), F_t = -min(nu_t |U_t|, mu F_n) t / alpha (viscous, nu_t = 2 gamma_t m_i + 2 beta_t sqrt(kn m_i),
     capped by Coulomb: give gamma_t or beta_t for friction), no spring (ks unused, no history); alpha = the points of
-    `point multipoint`, 1 otherwise. The wall's law is chosen here, not taken from the pair style.
+    `point multipoint`, 1 otherwise. `law volume`: a sharp polytope meets the wall through the volume of
+    its part beyond the plane, as `pair_style polyhedron/multipoint law volume` (A_ref = pi r_i^2; one
+    point whatever `point` says; other shapes keep their point and the Hooke law). The wall's law is chosen
+    here, not taken from the pair style.
     Glued composites (pair_style glued/convex) touch with each component, Model A/B as the pair style.
     Coefficients: given here for every type, or, when left out, those of each type with itself from
     pair_coeff. Example: `fix floor all wall/plane zplane 0.0 NULL kn 1000 en 0.5 mu 0.5 ks 285.7`.

@@ -36,7 +36,7 @@ def turning(row, axis, centre, omega):
 
 
 POINT_MODES = ("deepest", "centroid", "multipoint")   # `point` keyword of the wall fixes (kernel's `point`)
-LAWS = ("grains3d", "descantes")                       # `law` keyword of the wall fixes (dem.law.descantes)
+LAWS = ("grains3d", "descantes", "volume")             # `law` keyword of the wall fixes (dem.law, dem/law/volume.pxd)
 
 
 def law_name(word, what):
@@ -46,10 +46,10 @@ def law_name(word, what):
     return word
 
 
-def wall_keyword(fix, a, i, law, modes=POINT_MODES):
+def wall_keyword(fix, a, i, law, modes=POINT_MODES, laws=LAWS):
     """The keywords every wall fix takes, at a[i] (dem.args.Args): `point MODE` (one of modes) sets
-    fix.point, `law NAME` fix.contact_law, a word of the law (or `type T`) is added to the list `law`.
-    Returns the index after it, or None for another keyword."""
+    fix.point, `law NAME` (one of laws) fix.contact_law, a word of the law (or `type T`) is added to the
+    list `law`. Returns the index after it, or None for another keyword."""
     key = a[i]
     if key == "point":
         if a[i + 1] not in modes:
@@ -57,6 +57,8 @@ def wall_keyword(fix, a, i, law, modes=POINT_MODES):
         fix.point = POINT_MODES.index(a[i + 1])
     elif key == "law":
         fix.contact_law = law_name(a[i + 1], f"fix {fix.id} {fix.style}")
+        if fix.contact_law not in laws:
+            raise a.error(f"law {fix.contact_law} is not available on this wall (it takes {', '.join(laws)})")
     elif key in LAW_WORDS:
         law += a.words[i:i + 2]
     else:
@@ -87,7 +89,8 @@ class WallFix(WallCoefficients):
         sim = self.sim
         _walls.walls(ParticleView(sim.atom), int(self.groupbit), self.surfaces(), self.table, self.shape_view,
                      self.history(), self.law_width, self.use_history, self.bonds, sim.update.dt, advance,
-                     self.point, bool(getattr(sim.pair, "multipoint_average", True)), self.stats)
+                     self.point, bool(getattr(sim.pair, "multipoint_average", True)), self.contact_law == "volume",
+                     self.stats)
         self.ncontacts = int(self.stats[STAT["CONTACTS"]])
         self.max_overlap = float(self.stats[STAT["MAXOV"]])
         self.energy = float(self.stats[STAT["ENERGY"]])
