@@ -118,6 +118,14 @@ def test_stacked_cubes_count_the_common_sides_once(depth):
     assert r.volume == pytest.approx(depth, rel=1e-9, abs=1e-16)
     assert np.abs(r.area - [0, 0, 1]).max() < 1e-12
     assert np.abs(r.moment).max() < 1e-12
+    # the stack turned and moved as a whole: the shared planes now differ by round-off either way
+    rng = np.random.default_rng(11)
+    for _ in range(20):
+        q, x = rquat(rng), rng.normal(size=3) * 10
+        R = G.rotation(q)
+        r = P.overlap_volume(c, x, q, c, x + R @ [0.3, 0.0, 1.0 - depth], q)    # the y sides shared
+        assert r.volume == pytest.approx(0.7 * depth, rel=1e-7 if depth > 1e-7 else 1e-3)
+        assert np.abs(r.area - R @ [depth, 0.0, 0.7]).max() < 1e-9
 
 
 def test_cube_corner_closed_form():

@@ -6,6 +6,7 @@ from dem.contact._polytope cimport Polytope
 cdef enum:
     VOL_MAXF = 256         # faces of one body at most (larger bodies: overlap_volume returns -1)
     VOL_MAXFV = 64         # vertices of one face at most
+    VOL_MAXV = 2 * VOL_MAXF    # vertices of one body at most (a convex body of F faces has <= 2F - 4)
 
 cdef struct OverlapVolume:
     double volume          # V of the intersection (m^3)
