@@ -121,6 +121,58 @@ def test_compute_repose_on_a_read_bed(tmp_path):
         assert sim.thermo_keyword("c_rep[1]") == pytest.approx(-sim.thermo_keyword("c_rep"))
 
 
+def test_columns_split_over_processes_have_the_same_tops():
+    """What the ranks exchange: each finds the runs of its own particles (cut at gaps), and the columns
+    joined from every rank's runs have the tops the whole bed has, however the particles are split (slabs
+    across and along the surface, or at random: a column's particles then alternate between ranks)."""
+    from dem_process.compute_drum import _column_tops, _runs
+    rng = np.random.default_rng(5)
+    for angle in (30, 75):
+        h, u = bed(angle, 1, flying=8, wall=8).T
+        a = math.radians(angle)
+        s, n = h * math.cos(a) + u * math.sin(a), u * math.cos(a) - h * math.sin(a)
+        k = np.minimum(((s - s.min()) / np.ptp(s) * 20).astype(np.int64), 19)
+        whole = _column_tops(_runs(s, n, k, GAP, h, u), 20, GAP)
+        for owner in (h > 0, u > -0.3 * R, rng.integers(0, 3, len(h)), rng.integers(0, 7, len(h))):
+            owner = np.asarray(owner).astype(int)
+            parts = [_runs(s[owner == p], n[owner == p], k[owner == p], GAP, h[owner == p], u[owner == p])
+                     for p in np.unique(owner)]
+            assert np.array_equal(_column_tops(np.concatenate(parts), 20, GAP), whole, equal_nan=True)
+
+
+def test_compute_repose_on_one_and_two_ranks(tmp_path):
+    """The compute on 2 ranks (the bed cut across the drum) reads the angle of 1 rank: no rank holds the
+    whole bed, the ranks exchange a few numbers per bin."""
+    from conftest import MPIEXEC
+    from test_mpi import run_dem, thermo_rows
+    if MPIEXEC is None:
+        pytest.skip("mpiexec not found")
+    rows = [(x, (k + 0.5) * 2.04 * r, z) for k in range(4) for x, z in bed(70, 10 * k + 1, flying=1, wall=1,
+                                                                           layers=1)]
+    lines = [f"{i + 1} 1 {2 * r!r} 2500 {float(x)!r} {y!r} {float(z)!r} 0 0 0" for i, (x, y, z) in enumerate(rows)]
+    (tmp_path / "bed.data").write_text(
+        f"bed\n\n{len(lines)} atoms\n1 atom types\n\n{-R - r} {R + r} xlo xhi\n0 {4 * 2.04 * r} ylo yhi\n"
+        f"{-R - r} {R + r} zlo zhi\n\nAtoms # sphere\n\n" + "\n".join(lines) + "\n")
+    script = f"""boundary f p f
+processors 2 1 1
+read_data bed.data
+pair_style sphere
+pair_coeff * * kn 1e5 en 0.5 mu 0.5
+fix drum all wall/drum y 0 0 {R} rpm 0 kn 1e5 en 0.5 mu 0.5
+compute rep all repose drum
+thermo_style custom step c_rep c_rep[2] c_rep[3] c_rep[4] c_rep[5]
+timestep 1e-5
+run 0
+"""
+    got = []
+    for nprocs in (1, 2):
+        run_dem(tmp_path, script.replace("processors 2 1 1\n", "" if nprocs == 1 else "processors 2 1 1\n"),
+                nprocs, f"log.{nprocs}")
+        got.append([float(w) for w in thermo_rows(tmp_path / f"log.{nprocs}")[-1][1:]])
+    assert got[0][0] == pytest.approx(70, abs=TOL)
+    assert got[1] == pytest.approx(got[0], rel=1e-9, abs=1e-12)     # the same tops; sums in another order
+
+
 @pytest.mark.parametrize("words, message", [
     ("repose", "expected"),
     ("repose nodrum", "no fix with ID 'nodrum'"),

@@ -4,6 +4,7 @@ import math
 
 import numpy as np
 
+from dem.comm.serial import Comm
 from dem.compute import Compute
 
 from ._common import cross_section_basis, find_drum
@@ -12,31 +13,64 @@ from ._common import cross_section_basis, find_drum
 SURFACE_GAP = 4.0      # a gap of this many largest radii across the surface, in a bin's column, ends the bed
 SURFACE_TURNS = 100    # at most this many turns of the frame
 MAX_BINS = 100000      # bins across a drum's bed: far more than its particles along the surface
+_ONE = Comm(None)      # the reductions of one process (surface_fit called on arrays: tests, tools)
 
 
-def _surface_tops(s, n, nbins, trim, gap):
-    """Indices of the particles marking the surface, in a frame where s runs along it and n across it
-    (outwards). The s-range of the particles is cut into nbins bins; in each, the top of the bed is the
-    outermost particle of the column that rises from the bin's innermost particle without a gap across
-    the surface larger than `gap` (a particle carried on the wall or in flight is not the surface). The
-    bins of the central part are kept (trim of the range left out at each end, where the surface meets
-    the wall)."""
-    lo, hi = float(s.min()), float(s.max())
-    if hi <= lo:
-        return np.zeros(0, dtype=np.int64)
-    k = np.minimum(((s - lo) / (hi - lo) * nbins).astype(np.int64), nbins - 1)
+def _runs(s, n, k, gap, h, u):
+    """This process's columns, cut at gaps: rows (bin, n of the lowest, n of the highest, h and u of the
+    highest) of every run of particles of one bin sorted outwards with no gap across the surface larger
+    than `gap`. Runs are what the processes exchange: a handful per bin, whatever the particles."""
+    if len(s) == 0:
+        return np.zeros((0, 5))
     order = np.lexsort((n, k))                 # by bin, then outwards
     ks, ns = k[order], n[order]
-    first = np.r_[True, ks[1:] != ks[:-1]]
-    breaks = np.cumsum(~first & (np.diff(ns, prepend=-np.inf) > gap))
-    column = breaks == np.maximum.accumulate(np.where(first, breaks, 0))   # no gap since the bin's bottom
-    kept, kk = order[column], ks[column]
-    last = np.r_[kk[1:] != kk[:-1], True]      # the last kept of each bin: its column's top
-    which = np.full(nbins, -1, dtype=np.int64)
-    which[kk[last]] = kept[last]
+    new = np.r_[True, (ks[1:] != ks[:-1]) | (np.diff(ns) > gap)]
+    first = np.flatnonzero(new)
+    last = np.r_[first[1:], len(ks)] - 1
+    top = order[last]
+    return np.column_stack([ks[first], ns[first], ns[last], h[top], u[top]])
+
+
+def _column_tops(runs, nbins, gap):
+    """Per bin, (h, u) of the top of the column that rises from the bin's innermost particle without a gap
+    larger than `gap`, from the runs of every process (_runs): from the lowest run, the next ones join
+    while they start within `gap` of the column's top; nan where a bin is empty. The same on every
+    process (the same runs in the same order)."""
+    tops = np.full((nbins, 2), np.nan)
+    if len(runs) == 0:
+        return tops
+    runs = runs[np.lexsort((runs[:, 1], runs[:, 0]))]
+    b, lo, hi = runs[:, 0].astype(np.int64), runs[:, 1], runs[:, 2]
+    start = np.r_[True, b[1:] != b[:-1]]
+    for i in np.flatnonzero(start):            # a Python loop over bins (runs beyond a gap end it early)
+        j, top = i, hi[i]
+        best = i
+        while j + 1 < len(b) and b[j + 1] == b[i] and lo[j + 1] - top <= gap:
+            j += 1
+            if hi[j] > top:
+                top, best = hi[j], j
+        tops[b[i]] = runs[best, 3:5]
+    return tops
+
+
+def _surface_tops(h, u, theta, nbins, trim, gap, comm):
+    """(h, u) of the particles marking the surface, in a frame turned by theta where s runs along it and n
+    across it (outwards). The s-range of the particles (of every process) is cut into nbins bins; in each,
+    the top of the bed is the outermost particle of the column that rises from the bin's innermost
+    particle without a gap across the surface larger than `gap` (a particle carried on the wall or in
+    flight is not the surface). The bins of the central part are kept (trim of the range left out at each
+    end, where the surface meets the wall)."""
+    c, sn = math.cos(theta), math.sin(theta)
+    s, n = h * c + u * sn, u * c - h * sn
+    lo = comm.min(float(s.min()) if len(s) else math.inf)
+    hi = comm.max(float(s.max()) if len(s) else -math.inf)
+    if not hi > lo:
+        return np.zeros((0, 2))
+    k = np.minimum(((s - lo) / (hi - lo) * nbins).astype(np.int64), nbins - 1)
+    tops = _column_tops(np.concatenate(comm.allgather(_runs(s, n, k, gap, h, u))), nbins, gap)
     centres = lo + (np.arange(nbins) + 0.5) * (hi - lo) / nbins
-    keep = (which >= 0) & (centres >= lo + trim * (hi - lo)) & (centres <= hi - trim * (hi - lo))
-    return which[keep]
+    keep = ~np.isnan(tops[:, 0]) & (centres >= lo + trim * (hi - lo)) & (centres <= hi - trim * (hi - lo))
+    return tops[keep]
 
 
 def _long_axis(x, y):
@@ -46,38 +80,45 @@ def _long_axis(x, y):
     return 0.5 * math.atan2(2.0 * float(np.mean(dx * dy)), float(np.mean(dx * dx - dy * dy)))
 
 
-def _start_angle(h, u):
+def _start_angle(h, u, comm):
     """Starting angle of the surface (radians): the long axis of the bed's cross-section (the segment
     below a drum's chord is longer along the chord than across it at any filling), turned so that the
     outward normal (-sin, cos) points from the bed's centroid towards the drum's axis at h = u = 0 (the
-    empty side of the chord, whatever the filling)."""
-    theta = _long_axis(h, u)
-    if float(h.mean()) * math.sin(theta) - float(u.mean()) * math.cos(theta) < 0.0:
+    empty side of the chord, whatever the filling). From the sums of every process: the centroid first,
+    then the spread about it (two reductions keep the digits a one-pass sum of squares would lose)."""
+    count, sh, su = comm.sum_values(np.array([len(h), h.sum(), u.sum()], dtype=float))
+    mh, mu = sh / count, su / count
+    dh, du = h - mh, u - mu
+    sxy, sxx_yy = comm.sum_values(np.array([float(np.sum(dh * du)), float(np.sum(dh * dh - du * du))]))
+    theta = 0.5 * math.atan2(2.0 * sxy, sxx_yy)
+    if mh * math.sin(theta) - mu * math.cos(theta) < 0.0:
         theta += math.pi if theta < 0.0 else -math.pi
     return theta
 
 
-def surface_fit(h, u, nbins=20, trim=0.15, gap=math.inf):
+def surface_fit(h, u, nbins=20, trim=0.15, gap=math.inf, comm=None):
     """Free surface of a bed seen in a drum's cross-section: particles at horizontal h and height u, both
-    measured from the drum's axis. The surface is found in a frame that follows it, s along the surface
+    measured from the drum's axis (this process's: `comm` reduces over the processes; None, one process).
+    The surface is found in a frame that follows it, s along the surface
     and n across it: starting from the bed's long axis, the frame is turned to the line closest to the
     tops of its columns (_surface_tops) until the tops no longer change, so that the columns stand across
     the surface at any slope (columns standing vertically read a steep surface wrong: their tops reach
     the bed's side along the wall). A turn that passes the line halves the next ones (bins changing tops
     can make full turns cycle). Returns (angle in degrees, slope, height of the line at h = 0, bins used,
     roughness: the rms distance of the bins' surface particles from the line); zeros with fewer than 3
-    particles, or when a frame holds fewer than 2 bins."""
-    if len(h) < 3:
+    particles, or when a frame holds fewer than 2 bins. Each process sends the others a few numbers per
+    bin (_runs), never its particles."""
+    comm = comm or _ONE
+    if comm.sum(len(h)) < 3:
         return 0.0, 0.0, 0.0, 0, 0.0
-    theta = _start_angle(h, u)
+    theta = _start_angle(h, u, comm)
     step, last, before = 1.0, 0.0, None
     for _ in range(SURFACE_TURNS):
-        c, sn = math.cos(theta), math.sin(theta)
-        s, n = h * c + u * sn, u * c - h * sn
-        tops = _surface_tops(s, n, nbins, trim, gap)
+        tops = _surface_tops(h, u, theta, nbins, trim, gap, comm)
         if len(tops) < 2:
             return 0.0, 0.0, 0.0, 0, 0.0
-        turn = _long_axis(s[tops], n[tops])
+        c, sn = math.cos(theta), math.sin(theta)
+        turn = _long_axis(tops[:, 0] * c + tops[:, 1] * sn, tops[:, 1] * c - tops[:, 0] * sn)
         if before is not None and np.array_equal(tops, before):
             theta += turn               # the same tops: their line, exactly
             break
@@ -86,7 +127,7 @@ def surface_fit(h, u, nbins=20, trim=0.15, gap=math.inf):
         theta += step * turn
         last, before = turn, tops
     c, sn = math.cos(theta), math.sin(theta)
-    ns = u[tops] * c - h[tops] * sn
+    ns = tops[:, 1] * c - tops[:, 0] * sn
     theta = math.remainder(theta, 2.0 * math.pi)
     height = float(ns.mean())
     rough = math.sqrt(float(np.mean((ns - height) ** 2)))
@@ -138,12 +179,11 @@ class ComputeRepose(Compute):
         _, eh, up = cross_section_basis(sim, drum)
         atom = sim.atom
         sel = self.group_mask()
-        # every rank fits the same surface, through all the particles
-        _, x = sim.comm.allgather_rows(atom.data["tag"][:atom.nlocal][sel], atom.data["x"][:atom.nlocal][sel])
         r = atom.data["radius"][:atom.nlocal][sel]
         gap = SURFACE_GAP * sim.comm.max(float(r.max()) if len(r) else 0.0)
-        x = np.asarray(x).reshape(-1, 3) - drum.centre
-        return np.array(surface_fit(x @ eh, x @ up, self.nbins, self.trim, gap), dtype=float)
+        x = atom.data["x"][:atom.nlocal][sel] - drum.centre
+        # every rank fits the same surface from its own particles and a few numbers per bin of the others'
+        return np.array(surface_fit(x @ eh, x @ up, self.nbins, self.trim, gap, sim.comm), dtype=float)
 
     def compute_scalar(self):
         return abs(self.vector()[0])
