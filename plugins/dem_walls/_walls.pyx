@@ -1,7 +1,7 @@
 # cython: language_level=3
 """The wall kernel of every wall fix (wall/plane, wall/drum): particles of a group against a set of
 surfaces (planes and the inside of cylinders, at rest or turning; dem/contact/_surface.pxd), one contact
-per particle and surface, the shared law (dem/law/apply.pxd: the row's parts; the fixes' `law descantes` makes
+per particle and surface (only the pairs within the neighbor skin, listed at each rebuild: `candidates`), the shared law (dem/law/apply.pxd: the row's parts; the fixes' `law descantes` makes
 the rows Descantes' eq. 3) with m_ij = m_i.
 
 Spheres: analytic, the contact point midway in the overlap, levers along the normal, rolling resistance
@@ -11,6 +11,7 @@ composite touches a surface with each of its components (pieces): N_c contact po
 (Model B, `average`) or 1 (Model A, with the damping of m_i / N_c: eq. 18), levers from the composite's
 centre of mass."""
 cimport numpy as cnp
+import numpy as np
 from libc.stdlib cimport malloc, free
 from dem._particles cimport ParticleView, Particles
 from dem.contact.record cimport Contact
@@ -99,9 +100,48 @@ cdef inline int _vertices_beyond(const ShapeRef* S, const double* R, const doubl
     return m
 
 
+def candidates(ParticleView view, int groupbit, const double[:, ::1] surfaces, double reach):
+    """The (particle, surface) pairs that may touch before the next neighbor rebuild: the group's owned
+    particles whose bounding sphere comes within `reach` of a surface (reach: the neighbor skin, which bounds
+    a particle's move between rebuilds, plus how far beyond contact a row acts). Returns (particles (int32),
+    offsets (int64, one more than particles), surfaces (int32)): particle k's surfaces are
+    surfaces[offsets[k]:offsets[k + 1]], in increasing order. A pair left out is apart at every step until
+    the next rebuild, and the kernel's test would find it so (and keep its history at zero)."""
+    cdef Particles particles = view.p
+    cdef const Particles* P = &particles
+    cdef int i, w, nw = surfaces.shape[0], n = 0, m = 0
+    cdef double rho
+    cdef Surface* surf = <Surface*>malloc(max(nw, 1) * sizeof(Surface))
+    if surf == NULL:
+        raise MemoryError()
+    for w in range(nw):
+        load_surface(&surfaces[w, 0], &surf[w])
+    pi = np.empty(P.nlocal, np.int32)
+    off = np.zeros(P.nlocal + 1, np.int64)
+    pw = np.empty(max(P.nlocal * nw, 1), np.int32)
+    cdef int[::1] cpi = pi
+    cdef cnp.int64_t[::1] coff = off
+    cdef int[::1] cpw = pw
+    with nogil:
+        for i in range(P.nlocal):
+            if not (P.mask[i] & groupbit):
+                continue
+            for w in range(nw):
+                if bound_gap(&surf[w], &P.x[3 * i], &rho) < P.radius[i] + reach:
+                    cpw[m] = w
+                    m += 1
+            if m > coff[n]:
+                cpi[n] = i
+                n += 1
+                coff[n] = m
+    free(surf)
+    return pi[:n].copy(), off[:n + 1].copy(), pw[:m].copy()
+
+
 def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const double[:, :, ::1] coeff,
           ShapeView shapes, double[:, ::1] xi, int hw, bint use_history, bint bonds, double dt, bint advance,
-          int point, bint average, bint volume, double[::1] stats):
+          int point, bint average, bint volume, const int[::1] cand, const cnp.int64_t[::1] cand_off,
+          const int[::1] cand_w, double[::1] stats):
     """surfaces: rows of S_NCOL values (SURFACE). coeff[w, type]: the law row of surface w. xi: hw history
     values (the law's width) per surface and piece per particle (piece c of surface w at hw (c nw + w);
     pieces beyond the array's width keep no history); bonds: whether a row acts beyond contact once touched.
@@ -112,12 +152,15 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
     over the pieces touching one surface. volume (the fix's `law volume`, dem/law/volume.pxd): a sharp
     polytope (or piece) touches through its overlap volume with the half-space behind the surface (planes
     only: wall/drum refuses the law), at one point. A sphere whose row acts beyond contact (JKR, a bridge) keeps its
-    contact after it leaves the surface while bonded and within the row's reach. stats: the W_ sums (STAT)."""
+    contact after it leaves the surface while bonded and within the row's reach. cand, cand_off, cand_w:
+    the pairs to test (`candidates`, built at each neighbor rebuild); the others are apart. stats: the W_
+    sums (STAT)."""
     cdef Particles particles = view.p          # local copies: no call can change them (kept in registers)
     cdef const Particles* P = &particles
     cdef TableView table = shapes.t
     cdef const TableView* T = &table
-    cdef int i, w, d, s, c, q, npc, row, npt, nw = surfaces.shape[0]
+    cdef int i, w, d, s, c, q, npc, row, npt, nw = surfaces.shape[0], ci
+    cdef cnp.int64_t wk
     cdef int hpieces = xi.shape[1] // (hw * max(nw, 1)) if use_history else 0
     cdef double gap, rho, energy = 0.0, torque = 0.0, ncont = 0.0, maxov = 0.0, ov
     cdef double worst_i = -1.0, worst_w = -1.0, worst_gap = 0.0, behind = 0.0
@@ -170,14 +213,16 @@ def walls(ParticleView view, int groupbit, const double[:, ::1] surfaces, const 
     con.arm_b = 0.0
     con.inertia = 0.0
     with nogil:
-        for i in range(P.nlocal):
+        for ci in range(cand.shape[0]):
+            i = cand[ci]
             if not (P.mask[i] & groupbit):
                 continue
             x = &P.x[3 * i]
             s = P.shape[i]
             sphere = round_body(T, s)
             posed = False
-            for w in range(nw):
+            for wk in range(cand_off[ci], cand_off[ci + 1]):
+                w = cand_w[wk]
                 W = &surf[w]
                 gap = bound_gap(W, x, &rho)
                 # apart: a bonded sphere holds until its reach (R* = R_i), any other contact forgets

@@ -69,7 +69,7 @@ class FixWallDrum(WallFix, Fix):
     thermo_quantities = {"contacts": ("wall contacts", "-"), "omega": ("drum rate", "rad/s"),
                          "angle": ("drum angle", "rad"), "revs": ("drum turns", "-"),
                          "torque": ("torque of the walls on the particles", "N m")}
-    stages = Stage.POST_FORCE | Stage.INTEGRATE | Stage.END_OF_STEP
+    stages = Stage.POST_NEIGHBOR | Stage.POST_FORCE | Stage.INTEGRATE | Stage.END_OF_STEP
     usage = ("AXIS C1 C2 RADIUS [rpm W | omega W] [ramp T] [ends LO HI fixed|rotate] [carry GROUP] "
              "[point deepest|centroid|multipoint] "
              "[law grains3d|descantes] [kn KN en EN mu MU gamma_t GT beta_t BT ks KS mu_roll MR] "

@@ -45,10 +45,13 @@ class FixWallPlane(WallFix, Fix):
     Any part of the law (docs/contact_law.md: `normal jkr|dmt`, `rolling epsd|epsd2`, ...) with the same
     words as pair_coeff; a JKR sphere stays bonded to the wall until its pull-off distance. `type T`: the
     wall is of particle type T (a type with no particles gives a wall of its own material), and a
-    particle of type I meets it with the law of pair_coeff T I (materials mixed)."""
+    particle of type I meets it with the law of pair_coeff T I (materials mixed). A wall tests only the
+    particles within the neighbor skin of it (listed at each neighbor rebuild, as the pair list): a
+    particle moving more than half the skin between rebuilds (`neigh_modify check no` with a long
+    `every`) may pass it, as it may pass another particle."""
 
     style = "wall/plane"
-    stages = Stage.POST_FORCE
+    stages = Stage.POST_NEIGHBOR | Stage.POST_FORCE
 
     def __init__(self, sim, fid, group, args):
         super().__init__(sim, fid, group, args)

@@ -4,7 +4,7 @@ import numpy as np
 
 from dem._particles import ParticleView
 from dem.errors import DemError
-from dem.law import WORDS
+from dem.law import WORDS, max_reach
 from dem.law.wall_coeffs import WallCoefficients
 from dem.shapes import command as shape_command
 
@@ -84,13 +84,24 @@ class WallFix(WallCoefficients):
         self.stats = np.zeros(STAT["NSTAT"])
         self.stats[STAT["WORST_I"]] = -1
         self.behind = 0
+        self.reach = max_reach(self.table[:, 1:], self.sim.modify.max_radius())   # bonded spheres hold this far
+        self.candidates_for = -1
+
+    def post_neighbor(self):
+        """The pairs of particles and surfaces to test until the next rebuild (_walls.candidates)."""
+        sim = self.sim
+        reach = (sim.neighbor.skin or 0.0) + self.reach
+        self.candidates = _walls.candidates(ParticleView(sim.atom), int(self.groupbit), self.surfaces(), reach)
+        self.candidates_for = sim.atom.nlocal
 
     def compute(self, advance):
         sim = self.sim
+        if self.candidates_for != sim.atom.nlocal:   # particles removed since the rebuild: indices moved
+            self.post_neighbor()
         _walls.walls(ParticleView(sim.atom), int(self.groupbit), self.surfaces(), self.table, self.shape_view,
                      self.history(), self.law_width, self.use_history, self.bonds, sim.update.dt, advance,
                      self.point, bool(getattr(sim.pair, "multipoint_average", True)), self.contact_law == "volume",
-                     self.stats)
+                     *self.candidates, self.stats)
         self.ncontacts = int(self.stats[STAT["CONTACTS"]])
         self.max_overlap = float(self.stats[STAT["MAXOV"]])
         self.energy = float(self.stats[STAT["ENERGY"]])
