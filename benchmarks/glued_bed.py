@@ -12,8 +12,9 @@ Crosses: beams 2 x 0.5 x 0.5 mm (volume 1.25e-9 m3); cylinders: D = L of the sam
 beds are then timed for --steps steps from the restart, alternating cross and cylinder runs; the figures
 are the medians of the paired ratios of the loop time and of the pair stage per particle-step, and the
 pair stage per GJK query. The composite's broad-phase statistics per step are reported: component pairs of
-the listed particle pairs whose bounding spheres overlap, those left by the components' spheres and then
-by their boxes (each one GJK query), and the contact points found.
+the listed particle pairs whose bounding spheres overlap, those of them in the piece candidates (within the
+skin when the candidates were built), those not proven apart since (tested by the components' spheres),
+those left by their boxes (each one GJK query), and the contact points found.
 """
 import argparse
 import math
@@ -109,9 +110,10 @@ def main():
     print(f"loop per particle-step: crosses {1e6 * c['loop'] / ps:.2f} us, cylinders {1e6 * y['loop'] / ps:.2f} us")
     print(f"pair per GJK query: crosses {1e9 * c['pair'] / (c['gjk'] * args.steps):.0f} ns, "
           f"cylinders {1e9 * y['pair'] / (y['gjk'] * args.steps):.0f} ns")
-    print(f"crosses per step: component pairs {c['piece_pairs']:.0f}, after spheres {c['piece_spheres']:.0f}, "
-          f"after boxes (GJK) {c['piece_candidates']:.0f}, contact points {c['points']:.0f}; "
-          f"cylinders: GJK {y['gjk']:.0f}")
+    print(f"crosses per step: component pairs {c['piece_pairs']:.0f}, listed (piece candidates) "
+          f"{c['piece_listed']:.0f}, not proven apart since {c['piece_spheres']:.0f} (sphere-tested), after boxes "
+          f"(GJK) {c['piece_candidates']:.0f}, contact points {c['points']:.0f}, candidate builds "
+          f"{c['piece_builds'] * args.steps:.0f} in {args.steps} steps; cylinders: GJK {y['gjk']:.0f}")
     print(f"median ratio crosses / cylinders: loop {statistics.median(ratios):.2f}x, pair "
           f"{statistics.median(pratios):.2f}x")
 

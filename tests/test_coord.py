@@ -9,6 +9,7 @@ one per touching component for the dumbbells (wall/plane counts a composite's co
 `coord points` counts contact points instead: the same for spheres, convex bodies and the dumbbells of the
 row (one component pair touches), 4 per face/face contact of two cubes with polyhedron/multipoint, and 2
 for two dumbbells side by side (both component pairs touch)."""
+import numpy as np
 import pytest
 
 import dem
@@ -124,3 +125,17 @@ run 1
     assert za.scalar() == 2 * 144 / 64
     assert list(zg.vector()) == list(za.vector())
     assert zi.scalar() == 6.0
+
+
+def test_tally_reverse_sums_ghosts_in_ghost_order():
+    """The serial reverse of tallies (every step when one is in use) adds ghost rows to their owners in
+    ghost order: bit for bit the sums of np.add.at, for the widths of the tallies."""
+    from dem.comm import _serial
+    rng = np.random.default_rng(1)
+    for width in (2, 5, 9):
+        a = rng.random((500, width))
+        owner = rng.integers(0, 200, 300).astype(np.int64)       # owners repeat: several images of one
+        b = a.copy()
+        np.add.at(a, owner, a[200:500])
+        _serial.reverse_rows(b, owner, 200)
+        assert np.array_equal(a, b)

@@ -69,8 +69,10 @@ def test_bed_settles_without_loss():
     st = sim.pair.stats
     # broad-phase culling: the beams' bounding spheres are those of the crosses (all centred, same radius)
     # and cull nothing; their bounding boxes leave 10 % of the component pairs of touching crosses for GJK
-    # (measured 0.102), which finds 3 in 4 of those in contact (0.76); one query per candidate and step
-    assert st["piece_spheres"] == st["piece_pairs"]
+    # (measured 0.102), which finds 3 in 4 of those in contact (0.76); one query per candidate and step.
+    # The piece candidates list 42 % of the component pairs (within the skin at the list's build) and leave
+    # 15 % to the per-step culls (the others proven still apart: measured 0.42, 0.15)
+    assert st["piece_listed"] < 0.5 * st["piece_pairs"] and st["piece_spheres"] < 0.2 * st["piece_pairs"]
     assert 0.0 < st["piece_candidates"] < 0.2 * st["piece_pairs"] and st["gjk"] == st["piece_candidates"]
     assert st["points"] > 0.5 * st["gjk"]
 

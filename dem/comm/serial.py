@@ -156,10 +156,9 @@ class Comm:
         if fields is None:
             _serial.reverse(atom.data["f"], atom.data["torque"], self.ghost_owner, atom.nlocal)
             return
-        n, nall = atom.nlocal, atom.nall
         for name in fields:
             arr = atom.data[name]
-            np.add.at(arr, self.ghost_owner, arr[n:nall])
+            _serial.reverse_rows(arr.reshape(arr.shape[0], -1), self.ghost_owner, atom.nlocal)
 
     # ----- restarts (serial: the file holds this process's particles as they are) -------------------
     def gather_restart(self, state):

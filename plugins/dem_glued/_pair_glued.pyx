@@ -11,6 +11,18 @@ each point from m_ij / N_c, i.e. gamma_n / sqrt(N_c) (eq. 18), so that the resti
 Pieces are posed once per step (poses): piece c of particle i at cpose[cstart[i] + c] (scaled rotation,
 then centre), with its scaled bounding radius and crust.
 
+Piece candidates (issue 39): for each entry k of the neighbor list, the piece pairs (a, b) whose bounding
+sphere and box are within `margin` (the neighbor skin) when the list is built, pairs[coff[k]:coff[k+1]] in
+the order of the full double loop (candidates). Each step tests only those with the same sphere and box
+culls as before: a pair left out was more than `margin` apart (the gap of boxes_gap is a lower bound of the
+boxes' distance), and until no particle's pieces have moved more than MOVE margin since (poses bounds the
+move of each particle each step: displacement plus the chord of the rotation at the farthest box corner)
+it stays more than (1 - 2 MOVE) margin apart, so the per-step culls would drop it too. Likewise a listed
+pair apart by gap g > 0 at the build is dropped without its tests while the moves of its two particles sum
+to less than 2 MOVE g. The tested set, the histories and the trajectories are those of the full double loop,
+bit for bit. The lists are rebuilt with the neighbor list or when a particle has moved too far; nothing is
+communicated (ghosts are posed as owned particles).
+
 History: one keyed record per piece pair whose bounding spheres overlap (key a * KEY_BASE + b, a the piece
 of the list's owner): the tangential spring xi, the last core separation direction (GJK warm start and
 first axis), a tag of the two rows it was made for, and the last simplex (NFEAT values)."""
@@ -26,7 +38,7 @@ from dem.shapes._support cimport ShapeRef, Kind, quat_to_rot, NPARAM
 from dem.shapes._table cimport (ShapeView, TableView, core_ref, equivalent_radius, round_body, ncomponents,
                                component_row,
                                 pose_component)
-from dem.contact._bounds cimport boxes_apart
+from dem.contact._bounds cimport boxes_apart, boxes_gap
 from dem.law.apply cimport Body, apply_pair, bind_body, contact_radius
 from dem.law.law cimport forget
 from dem.law.row cimport XI_WIDTH
@@ -47,12 +59,18 @@ MAX_PIECES = 65535                    # pieces per particle the keys can name
 cdef double POINT_PARAMS[NPARAM]          # a sphere of radius 0 (zero-initialised)
 
 STATS = ("contacts", "points", "max_overlap", "energy", "gjk", "epa", "piece_pairs", "piece_spheres",
-         "piece_candidates")
+         "piece_candidates", "piece_listed", "piece_builds")
+cdef double MOVE = 0.45               # of the margin a particle's pieces may move before the lists are rebuilt
 
 
 cdef class GluedWork:
-    """Per-step poses of every particle's pieces (owned and ghost) and the kernel's statistics."""
+    """Per-step poses of every particle's pieces (owned and ghost), the piece candidates of the neighbor
+    list (coff, pairs) with the particles' state when they were made (xref, qref, rref, sref, and rho: the
+    farthest box corner of a particle's pieces from its centre), and the kernel's statistics."""
     cdef public object cstart, cpose, crad, ccrust, crow, stats, worst
+    cdef public object coff, pairs, cgap, xref, qref, rref, sref, rho, move, listed
+    cdef public double margin
+    cdef public i64 nref
 
     def __init__(self):
         self.cstart = np.zeros(1, np.int64)
@@ -62,10 +80,22 @@ cdef class GluedWork:
         self.crow = np.zeros(0, np.int32)
         self.stats = np.zeros(len(STATS))
         self.worst = np.zeros(2, dtype=np.int64)
+        self.coff = np.zeros(1, np.int64)
+        self.pairs = np.zeros(0, np.int32)
+        self.cgap = np.zeros(0)           # per candidate: its gap at the build (0: touching or unknown)
+        self.move = np.zeros(0)           # per particle: how far its pieces may have moved since
+        self.xref, self.qref, self.rref = np.zeros(0), np.zeros(0), np.zeros(0)
+        self.sref = np.zeros(0, np.int32)
+        self.rho = np.zeros(0)
+        self.listed = None                # the neighbor list's offsets the candidates were made for
+        self.margin = 0.0
+        self.nref = -1                    # particles (nall) when they were made; -1: none yet
 
 
 def poses(ParticleView view, ShapeView shapes, GluedWork work):
-    """Poses, bounding radii and crusts of the pieces of all nall particles."""
+    """Poses, bounding radii and crusts of the pieces of all nall particles; returns whether the piece
+    candidates must be rebuilt: a particle's pieces may have moved more than MOVE margin since they were
+    made (or its radius, its shape or the number of particles changed)."""
     cdef Particles particles = view.p
     cdef const Particles* P = &particles
     cdef TableView table = shapes.t
@@ -86,11 +116,36 @@ def poses(ParticleView view, ShapeView shapes, GluedWork work):
     cdef double[:, ::1] cpose = work.cpose
     cdef double[::1] crad = work.crad, ccrust = work.ccrust
     cdef int[::1] crow = work.crow
+    cdef bint stale = work.nref != P.nall
+    cdef const double[::1] xref, qref, rref, rho
+    cdef double[::1] moved
+    cdef const int[::1] sref
+    cdef double limit = MOVE * work.margin, dq, qq, rr, move
+    if not stale:
+        xref, qref, rref, rho, sref, moved = work.xref, work.qref, work.rref, work.rho, work.sref, work.move
     with nogil:
         n = 0
         for i in range(P.nall):
             s = P.shape[i]
             cstart[i] = n
+            if not stale:
+                if P.radius[i] != rref[i] or s != sref[i]:
+                    stale = True
+                else:
+                    # every point of the pieces moves by at most the displacement plus the chord
+                    # 2 rho sin(theta / 2) of the rotation since, cos(theta / 2) = |q . qref| / (|q| |qref|)
+                    dq = qq = rr = move = 0.0
+                    for k in range(4):
+                        dq += P.quat[4 * i + k] * qref[4 * i + k]
+                        qq += P.quat[4 * i + k] * P.quat[4 * i + k]
+                        rr += qref[4 * i + k] * qref[4 * i + k]
+                    for k in range(3):
+                        move += (P.x[3 * i + k] - xref[3 * i + k]) * (P.x[3 * i + k] - xref[3 * i + k])
+                    dq = 1.0 - dq * dq / (qq * rr)
+                    move = sqrt(move) + (2.0 * rho[i] * sqrt(dq) if dq > 0.0 else 0.0)
+                    moved[i] = move
+                    if not move <= limit:      # (NaN: rebuilt, the neighbor list reports it)
+                        stale = True
             if round_body(T, s):             # a plain sphere: a point core, crust = radius
                 for k in range(9):
                     cpose[n, k] = 0.0
@@ -113,6 +168,103 @@ def poses(ParticleView view, ShapeView shapes, GluedWork work):
                 crow[n] = row
                 n += 1
         cstart[P.nall] = n
+    return stale
+
+
+def candidates(ParticleView view, const i64[::1] offsets, const int[::1] neigh, ShapeView shapes,
+               GluedWork work, double margin):
+    """The piece candidates of every entry of the neighbor list (module docstring), from the poses of this
+    step, and the particles' state they are made for."""
+    cdef Particles particles = view.p
+    cdef const Particles* P = &particles
+    cdef TableView table = shapes.t
+    cdef const TableView* T = &table
+    cdef i64 nent = offsets[P.nlocal] if P.nlocal > 0 else 0
+    cdef i64 k, ia, jb, m = 0, cap
+    cdef int i, j, a, b, d, na, nb
+    cdef double r2, r, sa, sb, far, gap, gbox
+    if work.coff.shape[0] < nent + 1:
+        work.coff = np.zeros(int(nent * 1.2) + 16, np.int64)
+    if work.xref.shape[0] < 3 * P.nall:
+        n = int(P.nall * 1.2) + 16
+        work.xref, work.qref, work.rref, work.rho = np.zeros(3 * n), np.zeros(4 * n), np.zeros(n), np.zeros(n)
+        work.move = np.zeros(n)
+        work.sref = np.zeros(n, np.int32)
+    cdef const i64[::1] cstart = work.cstart
+    cdef const double[:, ::1] cpose = work.cpose
+    cdef const double[::1] crad = work.crad
+    cdef const int[::1] crow = work.crow
+    cdef i64[::1] coff = work.coff
+    cdef double[::1] xref = work.xref, qref = work.qref, rref = work.rref, rho = work.rho, moved = work.move
+    cdef int[::1] sref = work.sref
+    cdef int[::1] pairs = work.pairs
+    cdef double[::1] cgap = work.cgap
+    while True:
+        cap = pairs.shape[0] // 2
+        m = 0
+        with nogil:
+            coff[0] = 0
+            for i in range(P.nlocal):
+                for k in range(offsets[i], offsets[i + 1]):
+                    j = neigh[k]
+                    na = <int>(cstart[i + 1] - cstart[i])
+                    nb = <int>(cstart[j + 1] - cstart[j])
+                    for a in range(na):        # the order of compute's tests
+                        ia = cstart[i] + a
+                        for b in range(nb):
+                            jb = cstart[j] + b
+                            r2 = 0.0
+                            for d in range(3):
+                                r = cpose[ia, 9 + d] - cpose[jb, 9 + d]
+                                r2 += r * r
+                            gap = sqrt(r2) - (crad[ia] + crad[jb])
+                            if gap > margin:
+                                continue
+                            if crow[ia] >= 0 and crow[jb] >= 0:
+                                sa = crad[ia] / T.radius[crow[ia]]
+                                sb = crad[jb] / T.radius[crow[jb]]
+                                gbox = boxes_gap(&cpose[ia, 0], sa, &cpose[ia, 9], &T.half[3 * crow[ia]], sa,
+                                                 &cpose[jb, 0], sb, &cpose[jb, 9], &T.half[3 * crow[jb]], sb)
+                                if gbox > margin:
+                                    continue
+                                if gbox > gap:
+                                    gap = gbox
+                            if m < cap:
+                                pairs[2 * m] = a
+                                pairs[2 * m + 1] = b
+                                # a gap below 1e-6 margin is not trusted to outlast round-off: tested
+                                cgap[m] = gap if gap > 1e-6 * margin else 0.0
+                            m += 1
+                    coff[k + 1] = m
+        if m <= cap:
+            break
+        pairs = work.pairs = np.zeros(2 * (int(m * 1.3) + 64), np.int32)
+        cgap = work.cgap = np.zeros(int(m * 1.3) + 64)
+    with nogil:
+        for i in range(P.nall):
+            for d in range(3):
+                xref[3 * i + d] = P.x[3 * i + d]
+            for d in range(4):
+                qref[4 * i + d] = P.quat[4 * i + d]
+            rref[i] = P.radius[i]
+            moved[i] = 0.0
+            sref[i] = P.shape[i]
+            rho[i] = 0.0                       # a plain sphere: its pieces do not turn with it
+            if crow[cstart[i]] < 0:
+                continue
+            for ia in range(cstart[i], cstart[i + 1]):
+                r2 = 0.0
+                for d in range(3):
+                    r = cpose[ia, 9 + d] - P.x[3 * i + d]
+                    r2 += r * r
+                sa = crad[ia] / T.radius[crow[ia]]
+                far = sqrt(r2) + sa * sqrt(T.half[3 * crow[ia]] ** 2 + T.half[3 * crow[ia] + 1] ** 2
+                                           + T.half[3 * crow[ia] + 2] ** 2)
+                if far > rho[i]:
+                    rho[i] = far
+    work.nref = P.nall
+    work.margin = margin
+    work.stats[10] += 1.0
 
 
 cdef inline void _piece(const TableView* T, int row, ShapeRef* ref) noexcept nogil:
@@ -130,9 +282,10 @@ cdef inline void _piece(const TableView* T, int row, ShapeRef* ref) noexcept nog
 def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, const double[:, :, ::1] coeff,
             ShapeView shapes, GluedWork work, KeyedBuffers hist, bint use_xi, double tol, double dt,
             bint advance, bint model_b, i64 start):
-    """Adds the contact forces and torques of list entries from `start` on; returns -1, or the entry to
-    resume from when the history buffer is full (dem/_history.pxd). work.stats receives STATS (summed
-    over calls of one step by the caller resetting it)."""
+    """Adds the contact forces and torques of list entries from `start` on, testing the piece candidates
+    of `candidates` (made for this list); returns -1, or the entry to resume from when the history buffer
+    is full (dem/_history.pxd). work.stats receives STATS (summed over calls of one step by the caller
+    resetting it)."""
     cdef Particles particles = view.p
     cdef const Particles* P = &particles
     cdef TableView table = shapes.t
@@ -145,14 +298,18 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
     cdef double[::1] stats = work.stats
     cdef i64[::1] worst = work.worst
     cdef int i, j, a, b, d, q, na, nb, ncand, npt, code, rowa, rowb
-    cdef i64 k, ia, jb, key, resume = -1
+    cdef i64 k, m, ia, jb, key, resume = -1
+    cdef const i64[::1] coff = work.coff
+    cdef const int[::1] pairs = work.pairs
+    cdef const double[::1] cgap = work.cgap, moved = work.move
+    cdef double within
     cdef double dx[3]
     cdef double g[3]
     cdef double out[6]
     cdef double r2, rsum, r, gn, tag, meff, weight, rmin, sa, sb, reff, maxov = stats[2]
     cdef const double* cf
     cdef double ncont = 0.0, npts = 0.0, energy = 0.0, ngjk = 0.0, nepa = 0.0, npairs = 0.0, ncands = 0.0
-    cdef double nspheres = 0.0, nsph_entry
+    cdef double nspheres = 0.0, nsph_entry, nlisted = 0.0
     cdef const double* xa
     cdef const double* xb
     cdef double* rec
@@ -188,34 +345,40 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 nb = <int>(cstart[j + 1] - cstart[j])
                 ncand = 0
                 nsph_entry = nspheres
-                for a in range(na):            # the pieces' bounding spheres
+                nlisted += coff[k + 1] - coff[k]
+                within = moved[i] + moved[j]
+                for m in range(coff[k], coff[k + 1]):    # the candidates' bounding spheres
+                    if 2.0 * MOVE * cgap[m] > within:
+                        continue               # still apart (module docstring)
+                    a = pairs[2 * m]
+                    b = pairs[2 * m + 1]
                     ia = cstart[i] + a
-                    for b in range(nb):
-                        jb = cstart[j] + b
-                        r2 = 0.0
-                        for d in range(3):
-                            r = cpose[ia, 9 + d] - cpose[jb, 9 + d]
-                            r2 += r * r
-                        rsum = crad[ia] + crad[jb]
-                        if r2 >= rsum * rsum:
-                            continue
-                        nspheres += 1.0
-                        # then their bounding boxes (the spheres of elongated pieces are loose: Part III
-                        # Fig. 29); a plain sphere particle (row -1) has none
-                        sa = crad[ia] / T.radius[crow[ia]] if crow[ia] >= 0 else 1.0
-                        sb = crad[jb] / T.radius[crow[jb]] if crow[jb] >= 0 else 1.0
-                        if crow[ia] >= 0 and crow[jb] >= 0 and boxes_apart(
-                                &cpose[ia, 0], sa, &cpose[ia, 9], &T.half[3 * crow[ia]], sa,
-                                &cpose[jb, 0], sb, &cpose[jb, 9], &T.half[3 * crow[jb]], sb):
-                            continue
-                        cand[2 * ncand] = a
-                        cand[2 * ncand + 1] = b
-                        ncand += 1
+                    jb = cstart[j] + b
+                    r2 = 0.0
+                    for d in range(3):
+                        r = cpose[ia, 9 + d] - cpose[jb, 9 + d]
+                        r2 += r * r
+                    rsum = crad[ia] + crad[jb]
+                    if r2 >= rsum * rsum:
+                        continue
+                    nspheres += 1.0
+                    # then their bounding boxes (the spheres of elongated pieces are loose: Part III
+                    # Fig. 29); a plain sphere particle (row -1) has none
+                    sa = crad[ia] / T.radius[crow[ia]] if crow[ia] >= 0 else 1.0
+                    sb = crad[jb] / T.radius[crow[jb]] if crow[jb] >= 0 else 1.0
+                    if crow[ia] >= 0 and crow[jb] >= 0 and boxes_apart(
+                            &cpose[ia, 0], sa, &cpose[ia, 9], &T.half[3 * crow[ia]], sa,
+                            &cpose[jb, 0], sb, &cpose[jb, 9], &T.half[3 * crow[jb]], sb):
+                        continue
+                    cand[2 * ncand] = a
+                    cand[2 * ncand + 1] = b
+                    ncand += 1
                 if ncand == 0:
                     npairs += na * nb
                     continue
                 if not keyed_reserve(h, k, ncand):
                     nspheres = nsph_entry          # (counted again when the kernel resumes here)
+                    nlisted -= coff[k + 1] - coff[k]
                     resume = k
                     break
                 npairs += na * nb
@@ -332,4 +495,5 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
     stats[6] += npairs
     stats[7] += nspheres
     stats[8] += ncands
+    stats[9] += nlisted
     return resume

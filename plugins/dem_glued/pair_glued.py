@@ -22,7 +22,8 @@ class PairGluedConvex(PairCoefficients, Pair):
     shape of the table and plain spheres: one pair style serves them all. Grains3D Part III sec 2.5: the
     particles' bounding spheres (neighbor list), then the bounding spheres of their convex pieces (a
     composite's components; a convex particle or a sphere is its own single piece) and their bounding
-    boxes (separating axes: the spheres of elongated beams are loose, Part III Fig. 29), then the crust
+    boxes (separating axes: the spheres of elongated beams are loose, Part III Fig. 29), tested each step
+    only for the piece pairs found within the neighbor skin when the list was built, then the crust
     contact (GJK on the pieces shrunk by their crust, EPA for deep overlaps) of each piece pair, or the
     analytic contact of two sphere pieces (multisphere clumps). Each contact point acts through the
     Grains3D law (as `pair_style convex/gjk`) with the reduced mass of the two particles and levers
@@ -74,6 +75,7 @@ class PairGluedConvex(PairCoefficients, Pair):
         self.work = _pair_glued.GluedWork()
         self.stats = dict.fromkeys(_pair_glued.STATS, 0.0)    # sums over the run (benchmarks, tests)
         self.npoints = 0
+        self.piece_margin = None     # margin of the piece candidates; None: the neighbor skin (tests set 0)
 
     @property
     def multipoint_average(self):
@@ -95,9 +97,14 @@ class PairGluedConvex(PairCoefficients, Pair):
         nb = sim.neighbor
         w = self.work
         view = ParticleView(sim.atom)
-        _pair_glued.poses(view, self.shape_view, w)
+        stale = _pair_glued.poses(view, self.shape_view, w)
         w.stats[:] = 0.0
         w.worst[:] = -1
+        margin = nb.skin if self.piece_margin is None else self.piece_margin
+        if stale or w.listed is not nb.offsets or w.margin != margin:
+            # the piece candidates (issue 39): with each neighbor list, or when a particle has moved too far
+            _pair_glued.candidates(view, nb.offsets, nb.neigh, self.shape_view, w, margin)
+            w.listed = nb.offsets
         self.history.step(lambda start: _pair_glued.compute(
             view, nb.offsets, nb.neigh, self.table, self.shape_view, w, self.history.buffers, self.use_xi,
             self.tol, sim.update.dt, advance, self.model_b, start), advance)
@@ -107,7 +114,8 @@ class PairGluedConvex(PairCoefficients, Pair):
         self.max_overlap = float(st["max_overlap"])
         self.energy = float(st["energy"])
         if advance:
-            for key in ("contacts", "points", "gjk", "epa", "piece_pairs", "piece_spheres", "piece_candidates"):
+            for key in ("contacts", "points", "gjk", "epa", "piece_pairs", "piece_listed", "piece_spheres",
+                        "piece_candidates", "piece_builds"):
                 self.stats[key] += st[key]
         if self.ncontacts:
             a = sim.atom.data
