@@ -126,6 +126,7 @@ pair_style sphere
 """
 ATOM = "create_atoms 1 single 0.5 0.5 0.5 radius 0.01 density 2500\ntimestep 1e-6\n"
 JKR = "normal jkr E 1e7 nu 0.3 w 0.05 en 0.5 mu 0.3"
+HERTZ = "model hertz E 1e7 nu 0.3"
 BRIDGE = "cohesion capillary liquid_volume 1e-11 surface_tension 0.07 contact_angle 20"
 BAD = [
     # parse time
@@ -173,6 +174,22 @@ BAD = [
     ("pair_coeff * * kn 1e5 en 0.5 limit_damping\n", "'keyword value' pairs"),
     ("pair_coeff * * kn 1e5 en 0.5 tangential viscous mu 0.3 limit_damping 1 limit_damping 0\n",
      "'limit_damping' is given twice"),
+    # damping tsuji: en in [0, 1] and given; no coefficient of another damping part
+    (f"pair_coeff * * {HERTZ} en 1.5 mu 0.3 damping tsuji\n", "en must be in [0, 1]"),
+    (f"pair_coeff * * {HERTZ} en -0.1 mu 0.3 damping tsuji\n", "en must be in [0, 1]"),
+    (f"pair_coeff * * {HERTZ} en nan mu 0.3 damping tsuji\n", "en must be a finite number, got 'nan'"),
+    (f"pair_coeff * * {HERTZ} en inf mu 0.3 damping tsuji\n", "en must be a finite number"),
+    (f"pair_coeff * * {HERTZ} mu 0.3 damping tsuji\n", "model hertz needs en"),
+    ("pair_coeff * * kn 1e5 mu 0.3 damping tsuji\n", "the Hooke law needs en"),
+    ("pair_coeff * * kn 1e5 en 0.5 damping tsuji gamma_t 10\n", "'gamma_t' is a coefficient of damping restitution"),
+    ("pair_coeff * * kn 1e5 en 0.5 damping tsuji beta_t 0.5\n", "'beta_t' is a coefficient of damping restitution"),
+    (f"pair_coeff * * {HERTZ} en 0.5 mu 0.3 damping tsuji damping hertz\n", "'damping' is given twice"),
+    (f"pair_coeff * * {HERTZ} en 0.5 mu 0.3 damping tsujii\n",
+     "damping must be one of restitution, hertz, tsuji, got 'tsujii' (did you mean 'tsuji'"),
+    ("pair_coeff * * kn 1e5 en 0.5 mu 0.3 damping tsuji tangential viscous\n",
+     "tangential viscous takes its dashpot from damping restitution"),
+    (f"pair_coeff * * kn 1e5 en 0.5\nfix w all wall/plane zplane 0 NULL {HERTZ} mu 0.3 damping tsuji\n",
+     "model hertz needs en"),
 ]
 BAD_AT_RUN = [
     # the line that leaves its material to types that have none
@@ -269,4 +286,7 @@ def test_every_old_line_makes_the_row_it_always_made():
         law.PARTS["normal"]["hertz"], law.PARTS["damping"]["hertz"], law.PARTS["tangential"]["mindlin"])
     d = law.descantes(r)
     assert d[law.LIMIT] == 1 and d[law.TANGENTIAL] == law.PARTS["tangential"]["viscous"]
+    assert r[law.ALPHA] == h[law.ALPHA] == 0     # Tsuji's alpha only on damping tsuji rows
+    t = law.row(law.parse("kn 1e5 en 0.5 damping tsuji".split(), "pc"))
+    assert t[law.DAMPING] == law.PARTS["damping"]["tsuji"] and t[law.ALPHA] == law.tsuji_alpha(0.5) > 0
     assert law.prepare(np.array([d])) == 0 and law.prepare(np.array([r])) == law.XI_WIDTH

@@ -5,7 +5,7 @@ history a table of rows needs, and contact times. The force is computed by the i
 (normal.pxd, damping.pxd, tangential.pxd, rolling.pxd) composed by law.pxd, applied at a contact record
 by apply.pxd.
 
-A line names its parts (`normal hooke|hertz|jkr|dmt`, `damping restitution|hertz`, `tangential
+A line names its parts (`normal hooke|hertz|jkr|dmt`, `damping restitution|hertz|tsuji`, `tangential
 spring|mindlin|viscous`, `rolling constant|epsd|epsd2`) and gives their coefficients as keyword-value
 pairs in any order. `model hooke|hertz` is `normal` said as before the parts existed; unnamed parts take
 the defaults of the normal part: Hooke goes with restitution damping and the spring (the Grains3D law,
@@ -23,15 +23,16 @@ from ._columns import COLUMNS, PARTS, PLANS
 
 # columns of a coefficient row: defined once, in row.pxd
 (KN, BETA, MU, GAMMA_T, KS, MU_ROLL, EN, BETA_T, NORMAL, YSTAR, GSTAR, DAMPING, TANGENTIAL, LIMIT, ROLLING,
- ETA_ROLL, W, H_ROLL, H_BOND, COHESION, LIQUID, TENSION, ANGLE, PLAN, COHESION_K, NCOEFF, XI_WIDTH,
+ ETA_ROLL, W, H_ROLL, H_BOND, COHESION, LIQUID, TENSION, ANGLE, PLAN, COHESION_K, ALPHA, NCOEFF, XI_WIDTH,
  ROLL_WIDTH, BOND_WIDTH) = (COLUMNS[k] for k in (
     "KN", "BETA", "MU", "GAMMA_T", "KS", "MU_ROLL", "EN", "BETA_T", "NORMAL", "YSTAR", "GSTAR", "DAMPING",
     "TANGENTIAL", "LIMIT", "ROLLING", "ETA_ROLL", "W", "H_ROLL", "H_BOND", "COHESION", "LIQUID", "TENSION",
-    "ANGLE", "PLAN", "COHESION_K", "NCOEFF", "XI_WIDTH", "ROLL_WIDTH", "BOND_WIDTH"))
+    "ANGLE", "PLAN", "COHESION_K", "ALPHA", "NCOEFF", "XI_WIDTH", "ROLL_WIDTH", "BOND_WIDTH"))
 HERTZ_FAMILY = ("hertz", "jkr", "dmt")
 ADHESIVE = ("jkr", "dmt")
 KEYWORDS = {"kn": "normal stiffness (N/m) of normal hooke",
-            "en": "normal restitution coefficient (0 <= en <= 1; 0: critical damping, no rebound)",
+            "en": "normal restitution coefficient (0 <= en <= 1; 0: critical damping, no rebound; damping tsuji: "
+                  "the e of Tsuji's alpha(e))",
             "mu": "Coulomb friction coefficient", "gamma_t": "tangential dissipative coefficient (1/s)",
             "beta_t": "tangential damping as a fraction of critical, nu_t += 2 beta_t sqrt(kn m_ij) "
                       "(1: gamma_t = gamma_n at en 0, Descantes 2022 Table 2)",
@@ -51,7 +52,7 @@ SELECTORS = ("normal", "damping", "tangential", "rolling", "cohesion")
 PART_WORDS = {("normal", "hooke"): ("kn",), ("normal", "hertz"): ("E", "nu"), ("normal", "jkr"): ("E", "nu", "w"),
               ("normal", "dmt"): ("E", "nu", "w"),
               ("damping", "restitution"): ("en", "gamma_t", "beta_t", "limit_damping"),
-              ("damping", "hertz"): ("en", "limit_damping"),
+              ("damping", "hertz"): ("en", "limit_damping"), ("damping", "tsuji"): ("en", "limit_damping"),
               ("tangential", "spring"): ("mu", "ks"), ("tangential", "mindlin"): ("mu",),
               ("tangential", "viscous"): ("mu",),
               ("rolling", "constant"): ("mu_roll",), ("rolling", "epsd"): ("mu_roll", "eta_roll"),
@@ -213,6 +214,24 @@ def beta(en):
     return -ln / math.sqrt(math.pi ** 2 + ln * ln)
 
 
+# Tsuji et al. (1992)'s alpha(en), the coefficients of en^0 .. en^6 (as LAMMPS's damping tsuji gives them)
+TSUJI_ALPHA = (1.2728, -4.2783, 11.087, -22.348, 27.467, -18.022, 4.8218)
+
+
+def tsuji_alpha(en):
+    """gamma_n / sqrt(kn m*) of damping tsuji. The polynomial fits the restitution of a Hertz contact whose
+    dashpot is alpha sqrt(2 m* kn) (Tsuji's m, the mass of one of two equal spheres), to 1.1e-3 for en in
+    [0.1, 1]; with m* (LAMMPS's meff, as here) the restitution is tsuji_restitution(alpha)."""
+    return sum(a * en ** i for i, a in enumerate(TSUJI_ALPHA))
+
+
+def tsuji_restitution(alpha, normal="hertz"):
+    """The restitution of gamma_n = alpha sqrt(kn m*): exp(-pi alpha / sqrt(5 - alpha^2)) with kn = 4/3 Y* a
+    (the Hertz ODE whose en depends on alpha alone; damping hertz is alpha = sqrt(5) beta, hertz.md), and
+    exp(-pi alpha / sqrt(4 - alpha^2)) with Hooke's kn (a linear oscillator of damping ratio alpha / 2)."""
+    return math.exp(-math.pi * alpha / math.sqrt((4.0 if normal == "hooke" else 5.0) - alpha * alpha))
+
+
 def has_material(c):
     """Whether a parsed line gives its own material (a Hertz-family line may leave it to its types)."""
     return c["normal"] == "hooke" or "E" in c
@@ -235,6 +254,7 @@ def row(c):
     for sel in SELECTORS:
         r[COLUMNS[sel.upper()]] = PARTS[sel][c[sel]]
     r[BETA], r[EN] = beta(c["en"]), c["en"]
+    r[ALPHA] = tsuji_alpha(c["en"]) if c["damping"] == "tsuji" else 0.0
     r[MU], r[GAMMA_T] = c.get("mu", 0.0), c.get("gamma_t", 0.0)
     r[KS], r[MU_ROLL] = c.get("ks", 0.0), c.get("mu_roll", 0.0)
     r[BETA_T] = c.get("beta_t", 0.0)
@@ -327,11 +347,12 @@ def max_reach(rows, reff):
     return float(max((np.max(r) for r in reach if len(r)), default=0.0))
 
 
-def contact_time(kn, en, meff):
-    """T_c = pi / sqrt(omega0^2 - gamma_n^2) (eq. 12). At critical damping (en = 0) the pair never parts:
+def contact_time(kn, en, meff, zeta=None):
+    """T_c = pi / sqrt(omega0^2 - gamma_n^2) (eq. 12), gamma_n here gamma_n / (2 m*) = zeta omega0, zeta =
+    beta(en) unless given (damping tsuji: alpha / 2). At critical damping (en = 0) the pair never parts:
     the undamped half period pi / omega0 is returned as the contact's time scale (the time step check)."""
     w0 = math.sqrt(kn / meff)
-    g = beta(en) * w0
+    g = (beta(en) if zeta is None else zeta) * w0
     if g >= w0:
         return math.pi / w0
     return math.pi / math.sqrt(w0 * w0 - g * g)
@@ -342,7 +363,8 @@ def row_contact_time(r, meff, reff, speed):
     (contact_time) or, for a Hertz-family row, the elastic Hertz impact at `speed` (hertz.contact_time)."""
     if is_hertz_row(r):
         return hertz.contact_time(r[YSTAR], meff, reff, speed)
-    return contact_time(r[KN], r[EN], meff)
+    tsuji = r[DAMPING] == PARTS["damping"]["tsuji"]
+    return contact_time(r[KN], r[EN], meff, 0.5 * r[ALPHA] if tsuji else None)
 
 
 def check_speed(sim):

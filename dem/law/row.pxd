@@ -30,7 +30,8 @@ cdef enum:                 # columns of a coefficient row
     C_ANGLE = 22           # capillary: contact angle (radians)
     C_PLAN = 23            # P_GRAINS3D, P_HERTZ_MINDLIN: a common combination (compose.pxd skips what it lacks)
     C_COHESION_K = 24      # sjkr: cohesion energy density k (J/m^3)
-    NCOEFF = 25
+    C_ALPHA = 25           # D_TSUJI: gamma_n / sqrt(kn m*), Tsuji's alpha(en) (dem.law.tsuji_alpha)
+    NCOEFF = 26
 
 cdef enum:                 # normal parts (c[C_NORMAL])
     N_HOOKE = 0            # kn delta
@@ -38,9 +39,10 @@ cdef enum:                 # normal parts (c[C_NORMAL])
     N_JKR = 2              # Johnson-Kendall-Roberts: acts beyond contact until the pull-off distance
     N_DMT = 3              # Derjaguin-Muller-Toporov: Hertz minus 2 pi w R* while in contact
 
-cdef enum:                 # damping parts (c[C_DAMPING]), both from en
+cdef enum:                 # damping parts (c[C_DAMPING]), all from en
     D_RESTITUTION = 0      # 2 beta sqrt(kn m*): the exact restitution of a Hooke spring (Grains3D eq. 16)
     D_HERTZ = 1            # 2 sqrt(5/6) beta sqrt(3/2 kn m*): LIGGGHTS's model hertz
+    D_TSUJI = 2            # alpha(en) sqrt(kn m*): Tsuji et al. (1992) as LAMMPS's damping tsuji
 
 cdef enum:                 # tangential parts (c[C_TANGENTIAL])
     T_SPRING = 0           # history spring ks (and dashpot), capped by Coulomb (Grains3D)
