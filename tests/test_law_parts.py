@@ -127,6 +127,7 @@ pair_style sphere
 ATOM = "create_atoms 1 single 0.5 0.5 0.5 radius 0.01 density 2500\ntimestep 1e-6\n"
 JKR = "normal jkr E 1e7 nu 0.3 w 0.05 en 0.5 mu 0.3"
 HERTZ = "model hertz E 1e7 nu 0.3"
+TWIST = "model hertz E 1e7 nu 0.3 en 0.5 mu 0.3 twisting sds"
 BRIDGE = "cohesion capillary liquid_volume 1e-11 surface_tension 0.07 contact_angle 20"
 BAD = [
     # parse time
@@ -190,6 +191,27 @@ BAD = [
      "tangential viscous takes its dashpot from damping restitution"),
     (f"pair_coeff * * kn 1e5 en 0.5\nfix w all wall/plane zplane 0 NULL {HERTZ} mu 0.3 damping tsuji\n",
      "model hertz needs en"),
+    # twisting: sds needs its three numbers, finite, k and gamma >= 0, mu_twist > 0; marshall needs mu > 0
+    (f"pair_coeff * * {TWIST} k_twist 1e-3 gamma_twist 0\n", "twisting sds needs mu_twist"),
+    (f"pair_coeff * * {TWIST} mu_twist 1e-4\n", "twisting sds needs k_twist, gamma_twist"),
+    (f"pair_coeff * * {TWIST} k_twist 1e-3 gamma_twist 0 mu_twist 0\n",
+     "mu_twist must be > 0 (the twisting torque is capped at mu_twist |F_n|), got 0"),
+    (f"pair_coeff * * {TWIST} k_twist 1e-3 gamma_twist 0 mu_twist -1e-4\n", "mu_twist must be > 0"),
+    (f"pair_coeff * * {TWIST} k_twist 1e-3 gamma_twist 0 mu_twist nan\n", "mu_twist must be a finite number"),
+    (f"pair_coeff * * {TWIST} k_twist -1 gamma_twist 0 mu_twist 1e-4\n", "k_twist must be >= 0"),
+    (f"pair_coeff * * {TWIST} k_twist inf gamma_twist 0 mu_twist 1e-4\n", "k_twist must be a finite number"),
+    (f"pair_coeff * * {TWIST} k_twist 1e-3 gamma_twist -0.1 mu_twist 1e-4\n", "gamma_twist must be >= 0"),
+    (f"pair_coeff * * {TWIST} k_twist 1e-3 gamma_twist -nan mu_twist 1e-4\n", "gamma_twist must be a finite number"),
+    (f"pair_coeff * * {TWIST} k_twist 1e-3 gamma_twist none mu_twist 1e-4\n", "gamma_twist must be a number"),
+    ("pair_coeff * * kn 1e5 en 0.5 mu 0.3 k_twist 1e-3\n", "'k_twist' is a coefficient of twisting sds"),
+    ("pair_coeff * * kn 1e5 en 0.5 mu 0.3 twisting marshall mu_twist 1e-4\n",
+     "'mu_twist' is a coefficient of twisting sds"),
+    ("pair_coeff * * kn 1e5 en 0.5 mu 0.3 twisting marshal\n",
+     "twisting must be one of none, marshall, sds, got 'marshal' (did you mean 'marshall'"),
+    ("pair_coeff * * kn 1e5 en 0.5 mu 0.3 twisting marshall twisting sds\n", "'twisting' is given twice"),
+    ("pair_coeff * * kn 1e5 en 0.5 twisting marshall\n", "twisting marshall takes its friction from the tangential"),
+    (f"pair_coeff * * {HERTZ} en 0.5 mu 0 twisting marshall\n", "twisting marshall takes its friction"),
+    ("pair_coeff * * kn 1e5 en 0.5 mu 0.3 twisting\n", "'keyword value' pairs"),
 ]
 BAD_AT_RUN = [
     # the line that leaves its material to types that have none
@@ -222,7 +244,8 @@ def test_material_missing_at_the_run_names_the_pair_coeff_line(lines, bad, messa
 
 @pytest.mark.parametrize("style, shape", [("convex/gjk", "cube 0.01"), ("glued/convex", "cross3d 0.01"),
                                           ("polyhedron/multipoint", "cube 0.01")])
-@pytest.mark.parametrize("law", [JKR, f"kn 1e5 en 0.5 {BRIDGE}", "kn 1e5 en 0.5 rolling epsd2 mu_roll 0.1"])
+@pytest.mark.parametrize("law", [JKR, f"kn 1e5 en 0.5 {BRIDGE}", "kn 1e5 en 0.5 rolling epsd2 mu_roll 0.1",
+                                 "kn 1e5 en 0.5 mu 0.3 twisting marshall"])
 def test_parts_a_pair_style_cannot_keep_are_refused_at_the_run(style, shape, law):
     sim = dem.Simulation(screen=False)
     sim.commands(BOX.replace("pair_style sphere", f"shape s {shape}\npair_style {style}") +
@@ -239,6 +262,11 @@ def test_jkr_on_a_mesh_wall_is_refused_at_the_run(tmp_path):
     sim = dem.Simulation(screen=False)
     sim.commands(BOX + f"pair_coeff * * kn 1e5 en 0.5\nfix m all wall/mesh file {stl} {JKR}\n" + ATOM)
     with pytest.raises(dem.DemError, match="fix wall/plane and wall/drum have them"):
+        sim.commands("run 1")
+    sim = dem.Simulation(screen=False)
+    sim.commands(BOX + f"pair_coeff * * kn 1e5 en 0.5\nfix m all wall/mesh file {stl} kn 1e5 en 0.5 mu 0.3 "
+                       f"twisting marshall\n" + ATOM)
+    with pytest.raises(dem.DemError, match="twisting marshall/sds keep history this wall has no room for yet"):
         sim.commands("run 1")
 
 
