@@ -126,15 +126,18 @@ def test_marshall_slides_at_two_thirds_mu_a_load():
     assert abs(rate / expected - 1) < 1e-6, (rate, expected)
 
 
-def test_marshall_with_hooke_takes_the_geometric_contact_radius():
-    """Hooke has no contact radius of its own: a = sqrt(R* delta), as LAMMPS; k_tw = ks a^2 / 2, and the
-    dashpot of damping restitution nu_t = 2 gamma_t m (gamma_t 0 here: undamped)."""
+@pytest.mark.parametrize("z", [0.0, 0.3])
+def test_marshall_with_hooke_takes_the_geometric_contact_radius(z):
+    """Hooke has no contact radius of its own: a = sqrt(R* delta), as LAMMPS; k_tw = ks a^2 / 2 and, from the
+    tangential dashpot of damping restitution nu_t = 2 gamma_t m, gamma_tw = nu_t a^2 / 2 = gamma_t m a^2."""
     kn, ks, omega0, dt = 1e4, 3e4, 0.1, 2e-6
     delta0 = M * G / kn
     a = math.sqrt(R * delta0)
     k = 0.5 * ks * a * a
-    sim = spinning_on_floor(f"kn {kn} en 0.5 mu 0.5 ks {ks} twisting marshall", omega0, dt, delta0=delta0)
-    worst = follow(sim, k, 0.0, omega0, dt, quarters=4)
+    c = z * 2 * math.sqrt(k * I)
+    sim = spinning_on_floor(f"kn {kn} en 0.5 mu 0.5 ks {ks} gamma_t {c / (M * a * a)!r} twisting marshall", omega0,
+                            dt, delta0=delta0)
+    worst = follow(sim, k, c, omega0, dt, quarters=4)
     assert worst < 1e-3 * omega0, worst
 
 
