@@ -126,6 +126,8 @@ pair_style sphere
 """
 ATOM = "create_atoms 1 single 0.5 0.5 0.5 radius 0.01 density 2500\ntimestep 1e-6\n"
 JKR = "normal jkr E 1e7 nu 0.3 w 0.05 en 0.5 mu 0.3"
+HERTZ = "model hertz E 1e7 nu 0.3"
+TWIST = "model hertz E 1e7 nu 0.3 en 0.5 mu 0.3 twisting sds"
 BRIDGE = "cohesion capillary liquid_volume 1e-11 surface_tension 0.07 contact_angle 20"
 BAD = [
     # parse time
@@ -173,6 +175,43 @@ BAD = [
     ("pair_coeff * * kn 1e5 en 0.5 limit_damping\n", "'keyword value' pairs"),
     ("pair_coeff * * kn 1e5 en 0.5 tangential viscous mu 0.3 limit_damping 1 limit_damping 0\n",
      "'limit_damping' is given twice"),
+    # damping tsuji: en in [0, 1] and given; no coefficient of another damping part
+    (f"pair_coeff * * {HERTZ} en 1.5 mu 0.3 damping tsuji\n", "en must be in [0, 1]"),
+    (f"pair_coeff * * {HERTZ} en -0.1 mu 0.3 damping tsuji\n", "en must be in [0, 1]"),
+    (f"pair_coeff * * {HERTZ} en nan mu 0.3 damping tsuji\n", "en must be a finite number, got 'nan'"),
+    (f"pair_coeff * * {HERTZ} en inf mu 0.3 damping tsuji\n", "en must be a finite number"),
+    (f"pair_coeff * * {HERTZ} mu 0.3 damping tsuji\n", "model hertz needs en"),
+    ("pair_coeff * * kn 1e5 mu 0.3 damping tsuji\n", "the Hooke law needs en"),
+    ("pair_coeff * * kn 1e5 en 0.5 damping tsuji gamma_t 10\n", "'gamma_t' is a coefficient of damping restitution"),
+    ("pair_coeff * * kn 1e5 en 0.5 damping tsuji beta_t 0.5\n", "'beta_t' is a coefficient of damping restitution"),
+    (f"pair_coeff * * {HERTZ} en 0.5 mu 0.3 damping tsuji damping hertz\n", "'damping' is given twice"),
+    (f"pair_coeff * * {HERTZ} en 0.5 mu 0.3 damping tsujii\n",
+     "damping must be one of restitution, hertz, tsuji, got 'tsujii' (did you mean 'tsuji'"),
+    ("pair_coeff * * kn 1e5 en 0.5 mu 0.3 damping tsuji tangential viscous\n",
+     "tangential viscous takes its dashpot from damping restitution"),
+    (f"pair_coeff * * kn 1e5 en 0.5\nfix w all wall/plane zplane 0 NULL {HERTZ} mu 0.3 damping tsuji\n",
+     "model hertz needs en"),
+    # twisting: sds needs its three numbers, finite, k and gamma >= 0, mu_twist > 0; marshall needs mu > 0
+    (f"pair_coeff * * {TWIST} k_twist 1e-3 gamma_twist 0\n", "twisting sds needs mu_twist"),
+    (f"pair_coeff * * {TWIST} mu_twist 1e-4\n", "twisting sds needs k_twist, gamma_twist"),
+    (f"pair_coeff * * {TWIST} k_twist 1e-3 gamma_twist 0 mu_twist 0\n",
+     "mu_twist must be > 0 (the twisting torque is capped at mu_twist |F_n|), got 0"),
+    (f"pair_coeff * * {TWIST} k_twist 1e-3 gamma_twist 0 mu_twist -1e-4\n", "mu_twist must be > 0"),
+    (f"pair_coeff * * {TWIST} k_twist 1e-3 gamma_twist 0 mu_twist nan\n", "mu_twist must be a finite number"),
+    (f"pair_coeff * * {TWIST} k_twist -1 gamma_twist 0 mu_twist 1e-4\n", "k_twist must be >= 0"),
+    (f"pair_coeff * * {TWIST} k_twist inf gamma_twist 0 mu_twist 1e-4\n", "k_twist must be a finite number"),
+    (f"pair_coeff * * {TWIST} k_twist 1e-3 gamma_twist -0.1 mu_twist 1e-4\n", "gamma_twist must be >= 0"),
+    (f"pair_coeff * * {TWIST} k_twist 1e-3 gamma_twist -nan mu_twist 1e-4\n", "gamma_twist must be a finite number"),
+    (f"pair_coeff * * {TWIST} k_twist 1e-3 gamma_twist none mu_twist 1e-4\n", "gamma_twist must be a number"),
+    ("pair_coeff * * kn 1e5 en 0.5 mu 0.3 k_twist 1e-3\n", "'k_twist' is a coefficient of twisting sds"),
+    ("pair_coeff * * kn 1e5 en 0.5 mu 0.3 twisting marshall mu_twist 1e-4\n",
+     "'mu_twist' is a coefficient of twisting sds"),
+    ("pair_coeff * * kn 1e5 en 0.5 mu 0.3 twisting marshal\n",
+     "twisting must be one of none, marshall, sds, got 'marshal' (did you mean 'marshall'"),
+    ("pair_coeff * * kn 1e5 en 0.5 mu 0.3 twisting marshall twisting sds\n", "'twisting' is given twice"),
+    ("pair_coeff * * kn 1e5 en 0.5 twisting marshall\n", "twisting marshall takes its friction from the tangential"),
+    (f"pair_coeff * * {HERTZ} en 0.5 mu 0 twisting marshall\n", "twisting marshall takes its friction"),
+    ("pair_coeff * * kn 1e5 en 0.5 mu 0.3 twisting\n", "'keyword value' pairs"),
 ]
 BAD_AT_RUN = [
     # the line that leaves its material to types that have none
@@ -205,7 +244,8 @@ def test_material_missing_at_the_run_names_the_pair_coeff_line(lines, bad, messa
 
 @pytest.mark.parametrize("style, shape", [("convex/gjk", "cube 0.01"), ("glued/convex", "cross3d 0.01"),
                                           ("polyhedron/multipoint", "cube 0.01")])
-@pytest.mark.parametrize("law", [JKR, f"kn 1e5 en 0.5 {BRIDGE}", "kn 1e5 en 0.5 rolling epsd2 mu_roll 0.1"])
+@pytest.mark.parametrize("law", [JKR, f"kn 1e5 en 0.5 {BRIDGE}", "kn 1e5 en 0.5 rolling epsd2 mu_roll 0.1",
+                                 "kn 1e5 en 0.5 mu 0.3 twisting marshall"])
 def test_parts_a_pair_style_cannot_keep_are_refused_at_the_run(style, shape, law):
     sim = dem.Simulation(screen=False)
     sim.commands(BOX.replace("pair_style sphere", f"shape s {shape}\npair_style {style}") +
@@ -222,6 +262,11 @@ def test_jkr_on_a_mesh_wall_is_refused_at_the_run(tmp_path):
     sim = dem.Simulation(screen=False)
     sim.commands(BOX + f"pair_coeff * * kn 1e5 en 0.5\nfix m all wall/mesh file {stl} {JKR}\n" + ATOM)
     with pytest.raises(dem.DemError, match="fix wall/plane and wall/drum have them"):
+        sim.commands("run 1")
+    sim = dem.Simulation(screen=False)
+    sim.commands(BOX + f"pair_coeff * * kn 1e5 en 0.5\nfix m all wall/mesh file {stl} kn 1e5 en 0.5 mu 0.3 "
+                       f"twisting marshall\n" + ATOM)
+    with pytest.raises(dem.DemError, match="twisting marshall/sds keep history this wall has no room for yet"):
         sim.commands("run 1")
 
 
@@ -269,4 +314,7 @@ def test_every_old_line_makes_the_row_it_always_made():
         law.PARTS["normal"]["hertz"], law.PARTS["damping"]["hertz"], law.PARTS["tangential"]["mindlin"])
     d = law.descantes(r)
     assert d[law.LIMIT] == 1 and d[law.TANGENTIAL] == law.PARTS["tangential"]["viscous"]
+    assert r[law.ALPHA] == h[law.ALPHA] == 0     # Tsuji's alpha only on damping tsuji rows
+    t = law.row(law.parse("kn 1e5 en 0.5 damping tsuji".split(), "pc"))
+    assert t[law.DAMPING] == law.PARTS["damping"]["tsuji"] and t[law.ALPHA] == law.tsuji_alpha(0.5) > 0
     assert law.prepare(np.array([d])) == 0 and law.prepare(np.array([r])) == law.XI_WIDTH

@@ -2,15 +2,15 @@
 `pair_coeff` (or wall fix) line, the coefficient row they make (row.pxd: which normal, damping,
 tangential and rolling part acts, and their coefficients), the materials of each type mixed per pair, the
 history a table of rows needs, and contact times. The force is computed by the inline nogil parts
-(normal.pxd, damping.pxd, tangential.pxd, rolling.pxd) composed by law.pxd, applied at a contact record
-by apply.pxd.
+(normal.pxd, damping.pxd, tangential.pxd, rolling.pxd, twisting.pxd) composed by law.pxd, applied at a
+contact record by apply.pxd.
 
-A line names its parts (`normal hooke|hertz|jkr|dmt`, `damping restitution|hertz`, `tangential
-spring|mindlin|viscous`, `rolling constant|epsd|epsd2`) and gives their coefficients as keyword-value
-pairs in any order. `model hooke|hertz` is `normal` said as before the parts existed; unnamed parts take
+A line names its parts (`normal hooke|hertz|jkr|dmt`, `damping restitution|hertz|tsuji`, `tangential
+spring|mindlin|viscous`, `rolling constant|epsd|epsd2`, `twisting none|marshall|sds`) and gives their
+coefficients as keyword-value pairs in any order. `model hooke|hertz` is `normal` said as before the parts existed; unnamed parts take
 the defaults of the normal part: Hooke goes with restitution damping and the spring (the Grains3D law,
 Part III eq. 10-16), the Hertz family (hertz, jkr, dmt) with Hertz damping and Mindlin (LIGGGHTS's model
-hertz); rolling is `constant` (mu_roll, 0: none)."""
+hertz); rolling is `constant` (mu_roll, 0: none), twisting `none`."""
 import math
 
 import numpy as np
@@ -23,15 +23,18 @@ from ._columns import COLUMNS, PARTS, PLANS
 
 # columns of a coefficient row: defined once, in row.pxd
 (KN, BETA, MU, GAMMA_T, KS, MU_ROLL, EN, BETA_T, NORMAL, YSTAR, GSTAR, DAMPING, TANGENTIAL, LIMIT, ROLLING,
- ETA_ROLL, W, H_ROLL, H_BOND, COHESION, LIQUID, TENSION, ANGLE, PLAN, COHESION_K, NCOEFF, XI_WIDTH,
+ ETA_ROLL, W, H_ROLL, H_BOND, COHESION, LIQUID, TENSION, ANGLE, PLAN, COHESION_K, ALPHA, NCOEFF, XI_WIDTH,
  ROLL_WIDTH, BOND_WIDTH) = (COLUMNS[k] for k in (
     "KN", "BETA", "MU", "GAMMA_T", "KS", "MU_ROLL", "EN", "BETA_T", "NORMAL", "YSTAR", "GSTAR", "DAMPING",
     "TANGENTIAL", "LIMIT", "ROLLING", "ETA_ROLL", "W", "H_ROLL", "H_BOND", "COHESION", "LIQUID", "TENSION",
-    "ANGLE", "PLAN", "COHESION_K", "NCOEFF", "XI_WIDTH", "ROLL_WIDTH", "BOND_WIDTH"))
+    "ANGLE", "PLAN", "COHESION_K", "ALPHA", "NCOEFF", "XI_WIDTH", "ROLL_WIDTH", "BOND_WIDTH"))
+TWISTING, K_TWIST, GAMMA_TWIST, MU_TWIST, H_TWIST, TWIST_WIDTH = (COLUMNS[k] for k in (
+    "TWISTING", "K_TWIST", "GAMMA_TWIST", "MU_TWIST", "H_TWIST", "TWIST_WIDTH"))
 HERTZ_FAMILY = ("hertz", "jkr", "dmt")
 ADHESIVE = ("jkr", "dmt")
 KEYWORDS = {"kn": "normal stiffness (N/m) of normal hooke",
-            "en": "normal restitution coefficient (0 <= en <= 1; 0: critical damping, no rebound)",
+            "en": "normal restitution coefficient (0 <= en <= 1; 0: critical damping, no rebound; damping tsuji: "
+                  "the e of Tsuji's alpha(e))",
             "mu": "Coulomb friction coefficient", "gamma_t": "tangential dissipative coefficient (1/s)",
             "beta_t": "tangential damping as a fraction of critical, nu_t += 2 beta_t sqrt(kn m_ij) "
                       "(1: gamma_t = gamma_n at en 0, Descantes 2022 Table 2)",
@@ -45,23 +48,29 @@ KEYWORDS = {"kn": "normal stiffness (N/m) of normal hooke",
             "contact_angle": "contact angle of the liquid on the solid (degrees, 0 <= angle < 90)",
             "cohesion_energy_density": "cohesion sjkr's pull per unit contact area and overlap (J/m^3), > 0",
             "limit_damping": "1: the damping never makes the normal force attractive (LAMMPS's limit_damping; "
-                             "0, the default: it may, as the surfaces part)"}
-SELECTORS = ("normal", "damping", "tangential", "rolling", "cohesion")
+                             "0, the default: it may, as the surfaces part)",
+            "k_twist": "twisting spring of twisting sds (N m/rad), >= 0",
+            "gamma_twist": "twisting dashpot of twisting sds (N m s/rad), >= 0",
+            "mu_twist": "twisting friction of twisting sds: the largest torque is mu_twist |F_n| (m), > 0"}
+SELECTORS = ("normal", "damping", "tangential", "rolling", "cohesion", "twisting")
 # the numbers each part takes: the part's own coefficients and which of them a line must give
 PART_WORDS = {("normal", "hooke"): ("kn",), ("normal", "hertz"): ("E", "nu"), ("normal", "jkr"): ("E", "nu", "w"),
               ("normal", "dmt"): ("E", "nu", "w"),
               ("damping", "restitution"): ("en", "gamma_t", "beta_t", "limit_damping"),
-              ("damping", "hertz"): ("en", "limit_damping"),
+              ("damping", "hertz"): ("en", "limit_damping"), ("damping", "tsuji"): ("en", "limit_damping"),
               ("tangential", "spring"): ("mu", "ks"), ("tangential", "mindlin"): ("mu",),
               ("tangential", "viscous"): ("mu",),
               ("rolling", "constant"): ("mu_roll",), ("rolling", "epsd"): ("mu_roll", "eta_roll"),
               ("rolling", "epsd2"): ("mu_roll",), ("cohesion", "none"): (),
               ("cohesion", "capillary"): ("liquid_volume", "surface_tension", "contact_angle"),
-              ("cohesion", "sjkr"): ("cohesion_energy_density",)}
+              ("cohesion", "sjkr"): ("cohesion_energy_density",), ("twisting", "none"): (),
+              ("twisting", "marshall"): (), ("twisting", "sds"): ("k_twist", "gamma_twist", "mu_twist")}
 REQUIRED = {"hooke": ("kn", "en"), "hertz": ("E", "nu", "en", "mu"), "jkr": ("E", "nu", "w", "en", "mu"),
             "dmt": ("E", "nu", "w", "en", "mu"), "epsd": ("mu_roll", "eta_roll"), "epsd2": ("mu_roll",),
             "capillary": ("liquid_volume", "surface_tension", "contact_angle"),
-            "sjkr": ("cohesion_energy_density",)}
+            "sjkr": ("cohesion_energy_density",), "sds": ("k_twist", "gamma_twist", "mu_twist")}
+# the parts whose history is wider than the tangential spring (styles and walls without room refuse them)
+WIDE_HISTORY = "normal jkr, cohesion capillary, rolling epsd/epsd2 and twisting marshall/sds"
 WORDS = ("model",) + SELECTORS + tuple(KEYWORDS)      # every word of a law line (for the fixes' parsers)
 MATERIAL = ("E", "nu", "w")      # of each type: a line for types I != J may leave them to pair_coeff I I
 DEFAULT_PARTS = {"hooke": {"damping": "restitution", "tangential": "spring"},
@@ -90,6 +99,7 @@ def _parts(words, what):
         parts.setdefault(sel, value)
     parts.setdefault("rolling", "constant")
     parts.setdefault("cohesion", "none")
+    parts.setdefault("twisting", "none")
     return parts, rest
 
 
@@ -129,7 +139,7 @@ def parse(words, what, required=("kn", "en"), same_type=True):
         need[_name(parts)] = REQUIRED[normal]
     else:                      # types I != J only: the material may come from pair_coeff I I and J J
         need[_name(parts)] = [k for k in REQUIRED[normal] if k not in MATERIAL]
-    for sel in ("rolling", "cohesion"):
+    for sel in ("rolling", "cohesion", "twisting"):
         if parts[sel] in REQUIRED:
             need[f"{sel} {parts[sel]}"] = REQUIRED[parts[sel]]
     for name, keys in need.items():
@@ -176,13 +186,19 @@ def check(c, what):
     if "contact_angle" in c and not 0 <= c["contact_angle"] < 90:
         raise DemError(f"{what}: contact_angle must be in [0, 90) degrees (a wetting liquid), got "
                        f"{c['contact_angle']:g}")
-    for k in ("mu", "gamma_t", "beta_t", "ks", "mu_roll", "eta_roll"):
+    for k in ("mu", "gamma_t", "beta_t", "ks", "mu_roll", "eta_roll", "k_twist", "gamma_twist"):
         if c.get(k, 0.0) < 0:
             raise DemError(f"{what}: {k} must be >= 0")
     if c.get("limit_damping", 0) not in (0, 1):
         raise DemError(f"{what}: limit_damping must be 0 or 1, got {c['limit_damping']:g}")
     if c.get("rolling", "constant") != "constant" and not c.get("mu_roll", 0.0) > 0:
         raise DemError(f"{what}: rolling {c['rolling']} needs mu_roll > 0")
+    if "mu_twist" in c and not c["mu_twist"] > 0:
+        raise DemError(f"{what}: mu_twist must be > 0 (the twisting torque is capped at mu_twist |F_n|), got "
+                       f"{c['mu_twist']:g}")
+    if c.get("twisting") == "marshall" and not c.get("mu", 0.0) > 0:
+        raise DemError(f"{what}: twisting marshall takes its friction from the tangential part's (2/3 mu a): it "
+                       f"needs mu > 0")
 
 
 def frictionless(c):
@@ -213,6 +229,24 @@ def beta(en):
     return -ln / math.sqrt(math.pi ** 2 + ln * ln)
 
 
+# Tsuji et al. (1992)'s alpha(en), the coefficients of en^0 .. en^6 (as LAMMPS's damping tsuji gives them)
+TSUJI_ALPHA = (1.2728, -4.2783, 11.087, -22.348, 27.467, -18.022, 4.8218)
+
+
+def tsuji_alpha(en):
+    """gamma_n / sqrt(kn m*) of damping tsuji. The polynomial fits the restitution of a Hertz contact whose
+    dashpot is alpha sqrt(2 m* kn) (Tsuji's m, the mass of one of two equal spheres), to 1.1e-3 for en in
+    [0.1, 1]; with m* (LAMMPS's meff, as here) the restitution is tsuji_restitution(alpha)."""
+    return sum(a * en ** i for i, a in enumerate(TSUJI_ALPHA))
+
+
+def tsuji_restitution(alpha, normal="hertz"):
+    """The restitution of gamma_n = alpha sqrt(kn m*): exp(-pi alpha / sqrt(5 - alpha^2)) with kn = 4/3 Y* a
+    (the Hertz ODE whose en depends on alpha alone; damping hertz is alpha = sqrt(5) beta, hertz.md), and
+    exp(-pi alpha / sqrt(4 - alpha^2)) with Hooke's kn (a linear oscillator of damping ratio alpha / 2)."""
+    return math.exp(-math.pi * alpha / math.sqrt((4.0 if normal == "hooke" else 5.0) - alpha * alpha))
+
+
 def has_material(c):
     """Whether a parsed line gives its own material (a Hertz-family line may leave it to its types)."""
     return c["normal"] == "hooke" or "E" in c
@@ -235,6 +269,7 @@ def row(c):
     for sel in SELECTORS:
         r[COLUMNS[sel.upper()]] = PARTS[sel][c[sel]]
     r[BETA], r[EN] = beta(c["en"]), c["en"]
+    r[ALPHA] = tsuji_alpha(c["en"]) if c["damping"] == "tsuji" else 0.0
     r[MU], r[GAMMA_T] = c.get("mu", 0.0), c.get("gamma_t", 0.0)
     r[KS], r[MU_ROLL] = c.get("ks", 0.0), c.get("mu_roll", 0.0)
     r[BETA_T] = c.get("beta_t", 0.0)
@@ -243,7 +278,9 @@ def row(c):
     r[LIQUID], r[TENSION] = c.get("liquid_volume", 0.0), c.get("surface_tension", 0.0)
     r[ANGLE] = math.radians(c.get("contact_angle", 0.0))
     r[COHESION_K] = c.get("cohesion_energy_density", 0.0)
-    r[H_ROLL] = r[H_BOND] = -1.0
+    r[K_TWIST], r[GAMMA_TWIST] = c.get("k_twist", 0.0), c.get("gamma_twist", 0.0)
+    r[MU_TWIST] = c.get("mu_twist", 0.0)
+    r[H_ROLL] = r[H_BOND] = r[H_TWIST] = -1.0
     r[LIMIT] = c.get("limit_damping", 0)
     if c.get("normal", "hooke") == "hooke":
         r[KN] = c["kn"]
@@ -270,13 +307,14 @@ def is_hertz_row(r):
 
 
 def _needs(rows):
-    """(tangential history, rolling spring, bond) needed by rows (any array of them)."""
+    """(tangential history, rolling spring, twist angle, bond) needed by rows (any array of them)."""
     rows = np.asarray(rows)
     tan = rows[..., TANGENTIAL]
     xi = np.any((tan == PARTS["tangential"]["spring"]) & (rows[..., KS] > 0)) or np.any(
         (tan == PARTS["tangential"]["mindlin"]) & (rows[..., MU] > 0))
     roll = np.any((rows[..., ROLLING] != PARTS["rolling"]["constant"]) & (rows[..., MU_ROLL] > 0))
-    return bool(xi), bool(roll), bool(np.any(_bonds(rows)))
+    twist = np.any(rows[..., TWISTING] != PARTS["twisting"]["none"])
+    return bool(xi), bool(roll), bool(twist), bool(np.any(_bonds(rows)))
 
 
 def _bonds(rows):
@@ -298,17 +336,20 @@ def _plans(rows):
 def prepare(rows):
     """Make a table of rows (any array of them) ready for the kernels, in place: each row's plan and
     history offsets. Returns the history width the table needs (0: none): the tangential spring xi first
-    (XI_WIDTH), then the rolling spring (ROLL_WIDTH) and the bond flag, each only when a row of the table
-    has that part. A table of the seed models keeps XI_WIDTH or nothing."""
+    (XI_WIDTH), then the rolling spring (ROLL_WIDTH), the twist angle (TWIST_WIDTH) and the bond flag, each
+    only when a row of the table has that part. A table of the seed models keeps XI_WIDTH or nothing."""
     rows[..., PLAN] = _plans(rows)
-    xi, roll, bond = _needs(rows)
-    if not (xi or roll or bond):
+    xi, roll, twist, bond = _needs(rows)
+    if not (xi or roll or twist or bond):
         return 0
     width = XI_WIDTH
-    rows[..., H_ROLL] = rows[..., H_BOND] = -1.0
+    rows[..., H_ROLL] = rows[..., H_BOND] = rows[..., H_TWIST] = -1.0
     if roll:
         rows[..., H_ROLL] = np.where(rows[..., ROLLING] != PARTS["rolling"]["constant"], width, -1.0)
         width += ROLL_WIDTH
+    if twist:
+        rows[..., H_TWIST] = np.where(rows[..., TWISTING] != PARTS["twisting"]["none"], width, -1.0)
+        width += TWIST_WIDTH
     if bond:
         rows[..., H_BOND] = np.where(_bonds(rows), width, -1.0)
         width += BOND_WIDTH
@@ -327,11 +368,12 @@ def max_reach(rows, reff):
     return float(max((np.max(r) for r in reach if len(r)), default=0.0))
 
 
-def contact_time(kn, en, meff):
-    """T_c = pi / sqrt(omega0^2 - gamma_n^2) (eq. 12). At critical damping (en = 0) the pair never parts:
+def contact_time(kn, en, meff, zeta=None):
+    """T_c = pi / sqrt(omega0^2 - gamma_n^2) (eq. 12), gamma_n here gamma_n / (2 m*) = zeta omega0, zeta =
+    beta(en) unless given (damping tsuji: alpha / 2). At critical damping (en = 0) the pair never parts:
     the undamped half period pi / omega0 is returned as the contact's time scale (the time step check)."""
     w0 = math.sqrt(kn / meff)
-    g = beta(en) * w0
+    g = (beta(en) if zeta is None else zeta) * w0
     if g >= w0:
         return math.pi / w0
     return math.pi / math.sqrt(w0 * w0 - g * g)
@@ -342,7 +384,8 @@ def row_contact_time(r, meff, reff, speed):
     (contact_time) or, for a Hertz-family row, the elastic Hertz impact at `speed` (hertz.contact_time)."""
     if is_hertz_row(r):
         return hertz.contact_time(r[YSTAR], meff, reff, speed)
-    return contact_time(r[KN], r[EN], meff)
+    tsuji = r[DAMPING] == PARTS["damping"]["tsuji"]
+    return contact_time(r[KN], r[EN], meff, 0.5 * r[ALPHA] if tsuji else None)
 
 
 def check_speed(sim):

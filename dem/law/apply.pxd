@@ -2,7 +2,8 @@
 """The one path from a contact record (dem/contact/record.pxd) to forces and torques, shared by every pair
 style and wall: the relative velocity of the two surfaces at the contact point, the law of the row (law.pxd:
 its normal, damping and tangential parts, with the contact's history), the force on both bodies, the
-torques about both centres of mass, all times the record's weight, then the rolling part (rolling.pxd).
+torques about both centres of mass, all times the record's weight, then the rolling part (rolling.pxd)
+and the twisting part (twisting.pxd), couples on both bodies.
 
 A Body is one side of a contact. Pair styles call apply_pair, walls apply_wall, where the wall
 is the Body b: `v` is its velocity at the contact point and `w` its spin (for rolling resistance); it takes no force
@@ -18,9 +19,10 @@ part and is left out)."""
 from dem._math cimport cross3
 from dem._particles cimport Particles
 from dem.contact.record cimport Contact
-from dem.law.row cimport C_NORMAL, N_HOOKE
-from dem.law.law cimport ForRolling, evaluate
+from dem.law.row cimport C_NORMAL, C_TWISTING, N_HOOKE, TW_NONE
+from dem.law.law cimport ForCouples, evaluate
 from dem.law.rolling cimport rolling_torque
+from dem.law.twisting cimport twisting_torque
 
 
 cdef inline double contact_radius(const double* c, bint spheres, double ri, double rj) noexcept nogil:
@@ -61,8 +63,8 @@ cdef inline double apply_pair(const double* c, const Contact* k, const Body* a, 
                               double reff, double* h, double dt, bint advance, double* out) noexcept nogil:
     """The law at contact k between bodies a and b (reduced mass meff, coefficient row c, history h or
     NULL): adds the force to a and minus it to b, and the torques about both centres; out receives the
-    force on a (0-2) and the rolling torque on a (3-5, zero if none). Returns the elastic energy (times the
-    weight)."""
+    force on a (0-2) and the couple on a, rolling and twisting (3-5, zero if none). Returns the elastic
+    energy (times the weight)."""
     return _apply(c, k, a, b, meff, reff, h, dt, advance, out, False)
 
 
@@ -92,8 +94,8 @@ cdef inline double _apply(const double* c, const Contact* k, const Body* a, cons
     cdef double ft[3]
     cdef double lxf[3]
     cdef double tr[3]
-    cdef double energy, s = k.weight
-    cdef ForRolling R
+    cdef double energy, tw, s = k.weight
+    cdef ForCouples R
     cdef const double* n = k.n
     cdef const double* wa = a.w
     cdef const double* wb = b.w
@@ -167,6 +169,15 @@ cdef inline double _apply(const double* c, const Contact* k, const Body* a, cons
                                                 advance, tr):
         for d in range(3):
             out[3 + d] = tr[d]
+            a.t[d] += tr[d]
+        if not wall:
+            for d in range(3):
+                b.t[d] -= tr[d]
+    if <int>c[C_TWISTING] != TW_NONE and twisting_torque(c, n, wa, wb, &R, meff, reff, k.delta, h, dt, advance,
+                                                         &tw):
+        for d in range(3):
+            tr[d] = s * tw * n[d]
+            out[3 + d] += tr[d]
             a.t[d] += tr[d]
         if not wall:
             for d in range(3):

@@ -12,16 +12,19 @@ from dem.law.tangential cimport tangential_force
 from dem.law.cohesion cimport cohesion_force
 
 
-cdef struct ForRolling:
+cdef struct ForCouples:     # what the rolling and twisting parts (applied after the force) need
     double kn              # the normal stiffness (EPSD's k_r scales with it)
-    double load            # |F_n + shift|: the normal load of the Coulomb caps (EPSD's plastic limit)
+    double load            # |F_n + shift|: the normal load of the Coulomb caps (EPSD's and the twist's limits)
+    double a               # the normal part's contact radius (0 for Hooke and apart)
+    double w               # sqrt(kn m*), from which the damping part makes its dashpots
+    bint apart             # no contact (only a bridge acts): nothing twists
 
 
 cdef inline double compose(const double* c, double delta, const double* n, const double* vr, double meff,
                            double reff, double* h, double dt, bint advance, double* fn, double* ft,
-                           ForRolling* R) noexcept nogil:
+                           ForCouples* R) noexcept nogil:
     """The row's parts at one contact (module docstring); fn, ft receive the forces on body a, R what the
-    rolling part needs. Returns the elastic energy."""
+    rolling and twisting parts need. Returns the elastic energy."""
     cdef Normal N
     cdef double vt[3]
     cdef double vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2]
@@ -53,5 +56,8 @@ cdef inline double compose(const double* c, double delta, const double* n, const
     if general and advance and h != NULL and c[C_H_BOND] >= 0.0:
         h[<int>c[C_H_BOND]] = 1.0          # the bond holds (beyond contact too) until its reach
     R.kn = N.k
+    R.a = N.a
+    R.w = w
+    R.apart = apart
     R.load = fnmag + N.shift if fnmag + N.shift > 0.0 else -(fnmag + N.shift)
     return N.energy

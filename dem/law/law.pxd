@@ -2,7 +2,8 @@
 """The contact law at one contact point, composed of the parts its coefficient row names (row.pxd): a
 normal part (normal.pxd: Hooke, Hertz, JKR, DMT), a cohesion part that adds its pull (cohesion.pxd: a
 liquid bridge), a damping part (damping.pxd), a tangential part (tangential.pxd: history spring, Mindlin,
-viscous) and, applied by apply.pxd after the weight, a rolling part (rolling.pxd). Apart (delta < 0) only
+viscous) and, applied by apply.pxd after the weight, a rolling part (rolling.pxd) and a twisting part
+(twisting.pxd). Apart (delta < 0) only
 JKR and a bridge act, without friction. The seed models are combinations: Grains3D (Part III eq. 10-16)
 is Hooke + restitution damping + spring; LIGGGHTS's Hertz-Mindlin is Hertz + Hertz damping + Mindlin;
 Descantes 2022 eq. 3 is Hooke + restitution damping that never attracts (C_LIMIT) + viscous friction.
@@ -11,18 +12,18 @@ Descantes 2022 eq. 3 is Hooke + restitution damping that never attracts (C_LIMIT
 
 `vr` is the velocity of body a relative to body b at the contact point, `n` the unit normal from b to a,
 `h` the contact's history (NULL when the pair style keeps none): the tangential spring xi first
-(XI_WIDTH values), the rolling spring and the bond flag at the row's offsets. With `advance` false (setup
-passes) history is read but never changed. Returns the elastic energy; R receives what the rolling part
-needs."""
+(XI_WIDTH values), the rolling spring, the twist angle and the bond flag at the row's offsets. With
+`advance` false (setup passes) history is read but never changed. Returns the elastic energy; R receives what the rolling and
+twisting parts need."""
 from dem.law.row cimport C_H_BOND, C_NORMAL, C_COHESION, N_JKR, K_NONE, XI_WIDTH
 from dem.law.normal cimport jkr_reach
 from dem.law.cohesion cimport cohesion_reach
-from dem.law.compose cimport ForRolling, compose
+from dem.law.compose cimport ForCouples, compose
 
 
 cdef inline double evaluate(const double* c, double delta, const double* n, const double* vr, double meff,
                             double reff, double* h, double dt, bint advance, double* fn, double* ft,
-                            ForRolling* R) noexcept nogil:
+                            ForCouples* R) noexcept nogil:
     """The row's law at one contact (module docstring; compose.pxd)."""
     return compose(c, delta, n, vr, meff, reff, h, dt, advance, fn, ft, R)
 

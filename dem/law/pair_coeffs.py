@@ -8,8 +8,8 @@ import numpy as np
 from dem.args import parse_types
 from dem.errors import DemError
 
-from . import (ADHESIVE, NCOEFF, XI_WIDTH, check_speed, descantes, frictionless, has_material, is_hertz_row,
-               max_reach, mix_materials, parse, prepare, row, row_contact_time, warn_frictionless)
+from . import (ADHESIVE, NCOEFF, WIDE_HISTORY, XI_WIDTH, check_speed, descantes, frictionless, has_material,
+               is_hertz_row, max_reach, mix_materials, parse, prepare, row, row_contact_time, warn_frictionless)
 
 
 class PairCoefficients:
@@ -76,8 +76,8 @@ class PairCoefficients:
         self.table[:] = descantes(self.rows) if getattr(self, "law", "grains3d") == "descantes" else self.rows
         self.history_width = prepare(self.table[1:, 1:])
         if self.max_history is not None and self.history_width > self.max_history:
-            raise DemError(f"pair_style {self.style}: normal jkr, cohesion capillary and rolling epsd/epsd2 keep "
-                           f"history this pair style has no room for yet", hint="pair_style sphere has them")
+            raise DemError(f"pair_style {self.style}: {WIDE_HISTORY} keep history this pair style has no room "
+                           f"for yet", hint="pair_style sphere has them")
         self.reach = max_reach(self.table[1:, 1:], self.sim.modify.max_radius())
         return self.history_width > 0
 

@@ -30,7 +30,13 @@ cdef enum:                 # columns of a coefficient row
     C_ANGLE = 22           # capillary: contact angle (radians)
     C_PLAN = 23            # P_GRAINS3D, P_HERTZ_MINDLIN: a common combination (compose.pxd skips what it lacks)
     C_COHESION_K = 24      # sjkr: cohesion energy density k (J/m^3)
-    NCOEFF = 25
+    C_ALPHA = 25           # D_TSUJI: gamma_n / sqrt(kn m*), Tsuji's alpha(en) (dem.law.tsuji_alpha)
+    C_TWISTING = 26        # the twisting part: TW_NONE, TW_MARSHALL, TW_SDS
+    C_K_TWIST = 27         # twisting sds: spring (N m / rad)
+    C_GAMMA_TWIST = 28     # twisting sds: dashpot (N m s / rad)
+    C_MU_TWIST = 29        # twisting sds: the largest torque per unit normal load (m)
+    C_H_TWIST = 30         # history: offset of the twist angle (1 value), or -1
+    NCOEFF = 31
 
 cdef enum:                 # normal parts (c[C_NORMAL])
     N_HOOKE = 0            # kn delta
@@ -38,9 +44,10 @@ cdef enum:                 # normal parts (c[C_NORMAL])
     N_JKR = 2              # Johnson-Kendall-Roberts: acts beyond contact until the pull-off distance
     N_DMT = 3              # Derjaguin-Muller-Toporov: Hertz minus 2 pi w R* while in contact
 
-cdef enum:                 # damping parts (c[C_DAMPING]), both from en
+cdef enum:                 # damping parts (c[C_DAMPING]), all from en
     D_RESTITUTION = 0      # 2 beta sqrt(kn m*): the exact restitution of a Hooke spring (Grains3D eq. 16)
     D_HERTZ = 1            # 2 sqrt(5/6) beta sqrt(3/2 kn m*): LIGGGHTS's model hertz
+    D_TSUJI = 2            # alpha(en) sqrt(kn m*): Tsuji et al. (1992) as LAMMPS's damping tsuji
 
 cdef enum:                 # tangential parts (c[C_TANGENTIAL])
     T_SPRING = 0           # history spring ks (and dashpot), capped by Coulomb (Grains3D)
@@ -51,6 +58,11 @@ cdef enum:                 # rolling parts (c[C_ROLLING])
     R_CONSTANT = 0         # mu_roll R* |F_n| against the relative spin (none when mu_roll = 0)
     R_EPSD = 1             # elastic-plastic spring-dashpot (Ai et al. 2011 model C)
     R_EPSD2 = 2            # elastic-plastic spring, no dashpot (LIGGGHTS's epsd2)
+
+cdef enum:                 # twisting parts (c[C_TWISTING]): a torque about n against the relative spin
+    TW_NONE = 0
+    TW_MARSHALL = 1        # spring-dashpot-slider from the tangential part over the contact disc (Marshall 2009)
+    TW_SDS = 2             # spring-dashpot-slider of the row's own k_twist, gamma_twist, mu_twist
 
 cdef enum:                 # cohesion parts (c[C_COHESION]): forces added to the normal part's
     K_NONE = 0
@@ -66,3 +78,4 @@ cdef enum:
     XI_WIDTH = 3           # values of the tangential spring history xi (first in a contact's history)
     ROLL_WIDTH = 3         # values of the rolling spring history (a torque)
     BOND_WIDTH = 1         # the bond flag
+    TWIST_WIDTH = 1        # the twist angle

@@ -9,8 +9,17 @@ T_SPRING, T_MINDLIN: -min(mu |load|, |-nu_t vt - kt xi|) along the trial force, 
     the dashpot alone, capped.
 T_VISCOUS (Descantes 2022 eq. 3): -min(nu_t |vt|, mu |load|) vt / |vt|, no history."""
 from libc.math cimport sqrt
-from dem.law.row cimport C_MU, C_KS, C_GSTAR, T_SPRING, T_VISCOUS
+from dem.law.row cimport C_MU, C_KS, C_GSTAR, T_SPRING, T_MINDLIN, T_VISCOUS
 from dem.law.damping cimport tangential_damping
+
+
+cdef inline double tangential_stiffness(int part, const double* c, double a) noexcept nogil:
+    """kt of the tangential part `part` at contact radius a: ks, 8 G* a (Mindlin), 0 (viscous: no spring)."""
+    if part == T_SPRING:
+        return c[C_KS]
+    if part == T_MINDLIN:
+        return 8.0 * c[C_GSTAR] * a
+    return 0.0
 
 
 cdef inline void _zero(double* ft) noexcept nogil:
@@ -73,5 +82,5 @@ cdef inline void tangential_force(int part, int damping, const double* c, double
         _zero(ft)
         viscous(tangential_damping(damping, c, w, 0.0, meff), c[C_MU] * (load if load > 0.0 else -load), vt, ft)
         return
-    kt = c[C_KS] if part == T_SPRING else 8.0 * c[C_GSTAR] * a
+    kt = tangential_stiffness(part, c, a)
     spring(c, kt, tangential_damping(damping, c, w, kt, meff), load, n, vt, xi, dt, advance, ft)

@@ -11,8 +11,8 @@ import numpy as np
 from dem.args import parse_types
 from dem.errors import DemError
 
-from . import (H_BOND, NCOEFF, XI_WIDTH, check_speed, descantes, frictionless, is_hertz_row, parse, prepare,
-               row, row_contact_time, warn_frictionless)
+from . import (H_BOND, NCOEFF, WIDE_HISTORY, XI_WIDTH, check_speed, descantes, frictionless, is_hertz_row, parse,
+               prepare, row, row_contact_time, warn_frictionless)
 
 
 class WallCoefficients:
@@ -73,8 +73,8 @@ class WallCoefficients:
             self.table[:] = descantes(self.table)
         self.law_width = prepare(self.table[:, 1:])
         if self.max_history is not None and self.law_width > self.max_history:
-            raise DemError(f"{self._where()}fix {self.id} {self.style}: normal jkr, cohesion capillary and rolling "
-                           f"epsd/epsd2 keep history this wall has no room for yet",
+            raise DemError(f"{self._where()}fix {self.id} {self.style}: {WIDE_HISTORY} keep history this wall has "
+                           f"no room for yet",
                            hint="fix wall/plane and wall/drum have them")
         self.use_history = self.law_width > 0
         self.bonds = bool(np.any(self.table[:, 1:, H_BOND] >= 0))     # a row acts beyond contact

@@ -16,10 +16,10 @@ class PairSphere(PairCoefficients, Pair):
 
     pair_coeff I J kn KN en EN [mu MU] [gamma_t GT] [beta_t BT] [ks KS] [mu_roll MUR]
     pair_coeff I J model hertz E E nu NU en EN mu MU [mu_roll MUR]
-    pair_coeff I J [normal hooke|hertz|jkr|dmt] [cohesion none|capillary|sjkr] [damping restitution|hertz]
-                   [tangential spring|mindlin|viscous] [rolling constant|epsd|epsd2] COEFFICIENTS
-                   (kn E nu w en mu ks gamma_t beta_t mu_roll eta_roll liquid_volume surface_tension contact_angle
-                   cohesion_energy_density)
+    pair_coeff I J [normal hooke|hertz|jkr|dmt] [cohesion none|capillary|sjkr] [damping restitution|hertz|tsuji]
+                   [tangential spring|mindlin|viscous] [rolling constant|epsd|epsd2] [twisting none|marshall|sds]
+                   COEFFICIENTS (kn E nu w en mu ks gamma_t beta_t mu_roll eta_roll liquid_volume surface_tension
+                   contact_angle cohesion_energy_density k_twist gamma_twist mu_twist)
 
     Spheres in contact when their surfaces overlap (overlap delta, normal n along the line of centres,
     contact point in the middle of the overlap). The Grains3D law (Part III eq. 10-16) per contact:
