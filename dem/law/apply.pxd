@@ -24,6 +24,9 @@ from dem.law.law cimport ForCouples, evaluate
 from dem.law.rolling cimport rolling_torque
 from dem.law.twisting cimport twisting_torque
 
+cdef extern from *:
+    bint unlikely(bint) nogil        # Cython's __builtin_expect: the seed models never twist
+
 
 cdef inline double contact_radius(const double* c, bint spheres, double ri, double rj) noexcept nogil:
     """reff of a pair (see above): ri, rj are the radii of the bodies' spheres of equal volume (a sphere's own
@@ -95,6 +98,7 @@ cdef inline double _apply(const double* c, const Contact* k, const Body* a, cons
     cdef double lxf[3]
     cdef double tr[3]
     cdef double energy, tw, s = k.weight
+    cdef bint couple
     cdef ForCouples R
     cdef const double* n = k.n
     cdef const double* wa = a.w
@@ -165,19 +169,16 @@ cdef inline double _apply(const double* c, const Contact* k, const Body* a, cons
         if not wall and b.s != NULL:
             _tally(b.s, out, lj, -1.0)
     out[3] = out[4] = out[5] = 0.0
-    if reff > 0.0 and rolling_torque(c, n, wa, wb, fn, R.kn, s * R.load, reff, k.inertia, h, dt,
-                                                advance, tr):
+    couple = reff > 0.0 and rolling_torque(c, n, wa, wb, fn, R.kn, s * R.load, reff, k.inertia, h, dt,
+                                           advance, tr)
+    if unlikely(<int>c[C_TWISTING] != TW_NONE) and twisting_torque(c, n, wa, wb, &R, reff, k.delta, h, dt,
+                                                                   advance, &tw):
+        for d in range(3):       # onto the rolling couple: both applied by one loop (less inlined code)
+            tr[d] = (tr[d] if couple else 0.0) + s * tw * n[d]
+        couple = True
+    if couple:
         for d in range(3):
             out[3 + d] = tr[d]
-            a.t[d] += tr[d]
-        if not wall:
-            for d in range(3):
-                b.t[d] -= tr[d]
-    if <int>c[C_TWISTING] != TW_NONE and twisting_torque(c, n, wa, wb, &R, meff, reff, k.delta, h, dt, advance,
-                                                         &tw):
-        for d in range(3):
-            tr[d] = s * tw * n[d]
-            out[3 + d] += tr[d]
             a.t[d] += tr[d]
         if not wall:
             for d in range(3):

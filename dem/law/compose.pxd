@@ -16,7 +16,8 @@ cdef struct ForCouples:     # what the rolling and twisting parts (applied after
     double kn              # the normal stiffness (EPSD's k_r scales with it)
     double load            # |F_n + shift|: the normal load of the Coulomb caps (EPSD's and the twist's limits)
     double a               # the normal part's contact radius (0 for Hooke and apart)
-    double w               # sqrt(kn m*), from which the damping part makes its dashpots
+    double kt              # the tangential spring and dashpot (0 where no friction acts)
+    double nu_t
     bint apart             # no contact (only a bridge acts): nothing twists
 
 
@@ -34,6 +35,7 @@ cdef inline double compose(const double* c, double delta, const double* n, const
     cdef bint general = <int>c[C_PLAN] == P_GENERAL
     # apart only a bridge acts, and JKR within its pull-off distance (a bridge may reach further)
     cdef bint apart = general and delta < 0.0 and (normal != N_JKR or delta <= -jkr_reach(c, reff))
+    R.kt = R.nu_t = 0.0
     if apart:
         N.f = N.k = N.a = N.shift = N.energy = 0.0
     else:
@@ -52,12 +54,12 @@ cdef inline double compose(const double* c, double delta, const double* n, const
             for d in range(XI_WIDTH):
                 h[d] = 0.0
     else:
-        tangential_force(tangential, damping, c, w, N.a, fnmag + N.shift, meff, n, vt, h, dt, advance, ft)
+        tangential_force(tangential, damping, c, w, N.a, fnmag + N.shift, meff, n, vt, h, dt, advance, ft,
+                         &R.kt, &R.nu_t)
     if general and advance and h != NULL and c[C_H_BOND] >= 0.0:
         h[<int>c[C_H_BOND]] = 1.0          # the bond holds (beyond contact too) until its reach
     R.kn = N.k
     R.a = N.a
-    R.w = w
     R.apart = apart
     R.load = fnmag + N.shift if fnmag + N.shift > 0.0 else -(fnmag + N.shift)
     return N.energy

@@ -71,16 +71,19 @@ cdef inline void viscous(double nu_t, double cap, const double* vt, double* ft) 
 
 cdef inline void tangential_force(int part, int damping, const double* c, double w, double a, double load,
                                   double meff, const double* n, const double* vt, double* xi, double dt,
-                                  bint advance, double* ft) noexcept nogil:
+                                  bint advance, double* ft, double* kt, double* nu_t) noexcept nogil:
     """ft of the tangential part `part` with the damping part `damping`; w = sqrt(kn m*) (damping.pxd), a
-    the contact radius."""
-    cdef double kt
+    the contact radius. kt, nu_t receive the spring and the dashpot where friction acts (mu > 0; twisting
+    marshall spreads them over the contact)."""
     if c[C_MU] == 0.0:
         _zero(ft)
         return
     if part == T_VISCOUS:
         _zero(ft)
-        viscous(tangential_damping(damping, c, w, 0.0, meff), c[C_MU] * (load if load > 0.0 else -load), vt, ft)
+        kt[0] = 0.0
+        nu_t[0] = tangential_damping(damping, c, w, 0.0, meff)
+        viscous(nu_t[0], c[C_MU] * (load if load > 0.0 else -load), vt, ft)
         return
-    kt = tangential_stiffness(part, c, a)
-    spring(c, kt, tangential_damping(damping, c, w, kt, meff), load, n, vt, xi, dt, advance, ft)
+    kt[0] = tangential_stiffness(part, c, a)
+    nu_t[0] = tangential_damping(damping, c, w, kt[0], meff)
+    spring(c, kt[0], nu_t[0], load, n, vt, xi, dt, advance, ft)

@@ -11,21 +11,21 @@ TW_SDS: k_tw, gamma_tw, mu_tw the row's own (k_twist, gamma_twist, mu_twist).
 TW_MARSHALL (eq. 32-33): the tangential part's spring kt, dashpot nu_t and friction mu spread over the
     contact disc of radius a: k_tw = kt a^2 / 2, gamma_tw = nu_t a^2 / 2, mu_tw = 2/3 mu a. a is the normal
     part's contact radius, sqrt(R* delta) for Hooke (its geometric one, as LAMMPS takes it).
-Apart (only a bridge holds the pair) nothing twists and the angle is forgotten."""
+Apart (only a bridge holds the pair) nothing twists and the angle is forgotten. Kept small (kt and nu_t
+come from the tangential part, compose.pxd): the law inlined into the sphere kernel sits at the compiler's
+inlining limit (docs/contact_law.md, Cost)."""
 from libc.math cimport sqrt
-from dem.law.row cimport (C_NORMAL, C_DAMPING, C_TANGENTIAL, C_MU, C_TWISTING, C_K_TWIST, C_GAMMA_TWIST,
-                          C_MU_TWIST, C_H_TWIST, N_HOOKE, TW_SDS)
+from dem.law.row cimport (C_NORMAL, C_MU, C_TWISTING, C_K_TWIST, C_GAMMA_TWIST, C_MU_TWIST, C_H_TWIST, N_HOOKE,
+                          TW_SDS)
 from dem.law.compose cimport ForCouples
-from dem.law.damping cimport tangential_damping
-from dem.law.tangential cimport tangential_stiffness
 
 
 cdef inline bint twisting_torque(const double* c, const double* n, const double* wa, const double* wb,
-                                 const ForCouples* R, double meff, double reff, double delta, double* h,
+                                 const ForCouples* R, double reff, double delta, double* h,
                                  double dt, bint advance, double* tau) noexcept nogil:
     """tau (module docstring) for the row's twisting part; False, tau untouched, without history or
     contact."""
-    cdef double k, g, mu, a, kt, t, cap
+    cdef double k, g, mu, a, t, cap
     cdef double omega = (wa[0] - wb[0]) * n[0] + (wa[1] - wb[1]) * n[1] + (wa[2] - wb[2]) * n[2]
     cdef double* xi
     if h == NULL:
@@ -43,9 +43,8 @@ cdef inline bint twisting_torque(const double* c, const double* n, const double*
         a = R.a
         if <int>c[C_NORMAL] == N_HOOKE:
             a = sqrt(reff * delta) if delta > 0.0 else 0.0
-        kt = tangential_stiffness(<int>c[C_TANGENTIAL], c, a)
-        k = 0.5 * kt * a * a
-        g = 0.5 * tangential_damping(<int>c[C_DAMPING], c, R.w, kt, meff) * a * a
+        k = 0.5 * R.kt * a * a             # the tangential part's, as it acted on this contact
+        g = 0.5 * R.nu_t * a * a
         mu = 2.0 / 3.0 * c[C_MU] * a
     if advance:
         xi[0] += omega * dt
