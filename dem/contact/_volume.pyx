@@ -16,7 +16,8 @@ common apex. With a half-space the apex lies on its plane, so the cap (the secti
 nothing and is never built.
 
 Everything is computed in A's rotated frame centred on x_A (as _polytope.pyx), then turned to world.
-Faces of one body whose plane the other body does not reach are skipped (they cannot touch it).
+Faces of one body whose plane the other body does not reach are skipped (they cannot touch it), and so are
+the planes that cut nothing of it.
 V, S and M are continuous functions of the poses through every change of contact type (vertex/face,
 edge/edge, edge/face, face/face), unlike the depth of the separating axes, whose normal jumps between
 axes: this is what makes a law of V conserve energy. Cost: O(nf_A nf_B) clipped polygons at worst."""
@@ -123,23 +124,19 @@ cdef inline void _add_polygon(const double* P, int n, const double* nf, const do
 
 
 cdef inline int _clip_faces(const Polytope* P, const double* M, double sc, const double* t,
-                            const double* planes, int nplanes, const int* same, bint own, const double* other,
-                            int nother, double tol, const double* o, bint moments, double* buf_a, double* buf_b,
-                            Sums* s) noexcept nogil:
-    """Clips every face of P (posed in the frame as t + sc M v) by the planes (nplanes rows m, d: keep m.x <=
-    d) and adds the pieces to s. A face is skipped when no vertex of the other body (nother points, in the
-    frame; nother < 0: no such test) comes within tol of its plane: the other body lies wholly inside that
-    face's half-space, and the face cannot meet it (in a shallow contact most faces; tol keeps the faces
-    that share a plane, whichever way round-off puts the other's vertices). `same` (or NULL) pairs
-    coplanar faces of like orientation (_coplanar): with `own`, P's face same[g] is not clipped by plane g
-    (P's face holds that piece of the common boundary); without, P's face g is skipped when same[g] >= 0 (the
-    other body holds it), so the piece counts once whatever the round-off. Returns -1 when a face has more
-    than VOL_MAXFV vertices."""
+                            const double* planes, int nplanes, const int* faces_on, const int* planes_on,
+                            const int* same, bint own, const double* o, bint moments, double* buf_a,
+                            double* buf_b, Sums* s) noexcept nogil:
+    """Clips the faces of P (posed in the frame as t + sc M v) by the planes (nplanes rows m, d: keep m.x <=
+    d) and adds the pieces to s. faces_on, planes_on (or NULL: all): the faces and planes that take part
+    (_reached: a face the other body does not reach cannot meet it, a plane P does not reach cuts none of
+    its faces). `same` (or NULL) pairs coplanar faces of like orientation (_coplanar): with `own`, P's face
+    same[g] is not clipped by plane g (P's face holds that piece of the common boundary); without, P's face
+    g is skipped when same[g] >= 0 (the other body holds it), so the piece counts once whatever the
+    round-off. Returns -1 when a face has more than VOL_MAXFV vertices."""
     cdef int f, k, e, n, g
-    cdef bint reaches
     cdef double nf[3]
     cdef double v[3]
-    cdef double off
     cdef double* cur
     cdef double* nxt
     cdef double* tmp
@@ -147,17 +144,9 @@ cdef inline int _clip_faces(const Polytope* P, const double* M, double sc, const
         n = P.fcount[f]
         if n > VOL_MAXFV:
             return -1
-        if same != NULL and not own and same[f] >= 0:
+        if (faces_on != NULL and not faces_on[f]) or (same != NULL and not own and same[f] >= 0):
             continue
         mat_vec(M, P.fnormal + 3 * f, nf)
-        off = sc * P.foffset[f] + dot3(nf, t)
-        reaches = nother < 0
-        for k in range(nother):
-            if dot3(nf, &other[3 * k]) >= off - tol:
-                reaches = True
-                break
-        if not reaches:
-            continue
         cur = buf_a
         nxt = buf_b
         for k in range(n):
@@ -165,7 +154,7 @@ cdef inline int _clip_faces(const Polytope* P, const double* M, double sc, const
             for e in range(3):
                 cur[3 * k + e] = t[e] + sc * v[e]
         for g in range(nplanes):
-            if same != NULL and own and same[g] == f:
+            if (planes_on != NULL and not planes_on[g]) or (same != NULL and own and same[g] == f):
                 continue
             n = _clip(cur, n, &planes[4 * g], planes[4 * g + 3], nxt)
             if n < 3:
@@ -178,18 +167,36 @@ cdef inline int _clip_faces(const Polytope* P, const double* M, double sc, const
     return 0
 
 
-cdef inline void _coplanar(const double* pa, int na, const double* pb, int nb, double tol, int* same) noexcept nogil:
+cdef inline void _reached(const double* planes, int nplanes, const double* verts, int nverts, double tol,
+                         int* on) noexcept nogil:
+    """on[g]: whether a vertex of the other body comes within tol of plane g (or beyond). Where none does,
+    the other body lies wholly inside that half-space: face g cannot meet it, and plane g cuts nothing of
+    it (in a shallow contact, most planes). tol keeps faces that share a plane, whichever way round-off
+    puts the other's vertices."""
+    cdef int g, k
+    for g in range(nplanes):
+        on[g] = False
+        for k in range(nverts):
+            if dot3(&planes[4 * g], &verts[3 * k]) >= planes[4 * g + 3] - tol:
+                on[g] = True
+                break
+
+
+cdef inline void _coplanar(const double* pa, const int* on_a, int na, const double* pb, const int* on_b, int nb,
+                           double tol, int* same) noexcept nogil:
     """same[g]: the face of A in the plane of B's face g with the same outward normal (within tol, a length;
     the normals within tol per unit length), or -1. Such faces (aligned bodies, a lattice, a stack) bound
     the intersection together: clipped by each other's planes, round-off alone would decide whether the
-    piece counts twice or not at all."""
+    piece counts twice or not at all. Only faces the other body reaches can share a plane with it."""
     cdef int f, g
     cdef double c = 1.0 - 1e-12
     for g in range(nb):
         same[g] = -1
+        if not on_b[g]:
+            continue
         for f in range(na):
-            if (pa[4 * f] * pb[4 * g] + pa[4 * f + 1] * pb[4 * g + 1] + pa[4 * f + 2] * pb[4 * g + 2] >= c
-                    and fabs(pa[4 * f + 3] - pb[4 * g + 3]) <= tol):
+            if on_a[f] and (pa[4 * f] * pb[4 * g] + pa[4 * f + 1] * pb[4 * g + 1] + pa[4 * f + 2] * pb[4 * g + 2] >= c
+                            and fabs(pa[4 * f + 3] - pb[4 * g + 3]) <= tol):
                 same[g] = f
                 break
 
@@ -227,6 +234,8 @@ cdef int overlap_volume(const Polytope* A, const double* Ra, double sa, const do
     cdef double va[3 * VOL_MAXV]
     cdef double vb[3 * VOL_MAXV]
     cdef int same[VOL_MAXF]
+    cdef int on_a[VOL_MAXF]
+    cdef int on_b[VOL_MAXF]
     cdef Sums s
     cdef double tol
     cdef int i, j, f
@@ -257,13 +266,14 @@ cdef int overlap_volume(const Polytope* A, const double* Ra, double sa, const do
         for i in range(3):
             vb[3 * f + i] = t[i] + sb * mb[i]
     tol = COPLANAR_TOL * (sa * A.radius + sb * B.radius)
-    _coplanar(planes_a, A.nf, planes_b, B.nf, tol, same)
+    _reached(planes_a, A.nf, vb, B.nv, 2.0 * tol, on_a)
+    _reached(planes_b, B.nf, va, A.nv, 2.0 * tol, on_b)
+    _coplanar(planes_a, on_a, A.nf, planes_b, on_b, B.nf, tol, same)
     _zero(&s)
     # the tetrahedra's apex: B's centre (any point would do; a near one keeps them small)
-    if _clip_faces(A, I, sa, zero, planes_b, B.nf, same, True, vb, B.nv, 2.0 * tol, t, True, buf_a, buf_b, &s) < 0:
+    if _clip_faces(A, I, sa, zero, planes_b, B.nf, on_a, on_b, same, True, t, True, buf_a, buf_b, &s) < 0:
         return -1
-    if _clip_faces(B, MB, sb, t, planes_a, A.nf, same, False, va, A.nv, 2.0 * tol, t, False, buf_a, buf_b,
-                   &s) < 0:
+    if _clip_faces(B, MB, sb, t, planes_a, A.nf, on_b, on_a, same, False, t, False, buf_a, buf_b, &s) < 0:
         return -1
     if not s.V > 0.0:
         return 0
@@ -293,7 +303,7 @@ cdef int overlap_halfspace(const Polytope* A, const double* Ra, double sa, const
         o[i] = plane[3] * plane[i]             # the apex on the plane: the cap adds no tetrahedron
     _zero(&s)
     # no face is culled (one plane clips fast, and a face wholly outside the half-space ends empty)
-    if _clip_faces(A, I, sa, zero, plane, 1, NULL, True, NULL, -1, 0.0, o, True, buf_a, buf_b, &s) < 0:
+    if _clip_faces(A, I, sa, zero, plane, 1, NULL, NULL, NULL, True, o, True, buf_a, buf_b, &s) < 0:
         return -1
     if not s.V > 0.0:
         return 0
