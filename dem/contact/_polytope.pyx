@@ -288,9 +288,6 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
     cdef double c[3]
     cdef double dd[3]
     cdef double DxC[3]
-    cdef double BxA[3]
-    cdef double qb0[3]
-    cdef double qb1[3]
     cdef double eB[3]
     cdef double eA[3]
     cdef double w[3]
@@ -298,10 +295,21 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
     cdef const double* b
     cdef const double* va0
     cdef const double* va1
+    cdef const double* qb0
+    cdef const double* qb1
+    cdef const double* bxa
     cdef double CBA, DBA, ADC, BDC, s2, lim, slab, hwA, hwB, pa, pb
     cdef double sw[3]              # the best face axis (the slab's direction)
     cdef int cand[EDGE_BUF]
-    cdef int nca, ne_b, ii, k
+    # per pair, computed once rather than per edge: B's vertices and face normals in A's frame (qb, mb), and
+    # for A's candidate edges b x a of their face normals (BxA)
+    cdef double qb[3 * SUPPORT_BUF]
+    cdef double mb[3 * SUPPORT_BUF]
+    cdef double BxA[3 * EDGE_BUF]
+    cdef double qt0[3]
+    cdef double qt1[3]
+    cdef bint keep_qb = B.nv <= SUPPORT_BUF, keep_mb = B.nf <= SUPPORT_BUF, small_a = A.ne <= EDGE_BUF
+    cdef int nca, ne_b, ii, k, na
     # faces of A: u = n_f, h_A(u) = sa d_f
     for f in range(A.nf):
         a = A.fnormal + 3 * f
@@ -318,6 +326,8 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
     # faces of B: m = M n_g (outward of B, in A's frame), u = -m, h_B(-u) = m.t + sb d_g
     for g in range(B.nf):
         mat_vec(F.M, B.fnormal + 3 * g, m)
+        if keep_mb:
+            mb[3 * g], mb[3 * g + 1], mb[3 * g + 2] = m[0], m[1], m[2]
         w[0] = -m[0]
         w[1] = -m[1]
         w[2] = -m[2]
@@ -345,7 +355,7 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
     ne_b = B.ne if lim > 0.0 else 0
     slab = 2.0 * lim + 4.0 * tie
     nca = 0
-    if ne_b and A.ne <= EDGE_BUF:         # (a larger A pairs all its edges)
+    if ne_b and small_a:                  # (a larger A pairs all its edges)
         for i in range(A.ne):
             va0 = A.verts + 3 * A.edges[2 * i]
             va1 = A.verts + 3 * A.edges[2 * i + 1]
@@ -353,17 +363,33 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
             pb = F.sa * _dot(sw, va1)
             if (pa if pa > pb else pb) >= hwA - slab:
                 cand[nca] = i
+                _cross(A.fnormal + 3 * A.efaces[2 * i + 1], A.fnormal + 3 * A.efaces[2 * i], &BxA[3 * nca])
                 nca += 1
+    if ne_b and keep_qb:
+        for k in range(B.nv):
+            _b_point(B, F, k, &qb[3 * k])
+    na = nca if small_a else A.ne
     hwB = hwA - lim                       # -h_B(-w): B's lowest value along w
     for j in range(ne_b):
-        _b_point(B, F, B.edges[2 * j], qb0)
-        _b_point(B, F, B.edges[2 * j + 1], qb1)
+        if keep_qb:
+            qb0 = &qb[3 * B.edges[2 * j]]
+            qb1 = &qb[3 * B.edges[2 * j + 1]]
+        else:
+            _b_point(B, F, B.edges[2 * j], qt0)
+            _b_point(B, F, B.edges[2 * j + 1], qt1)
+            qb0 = qt0
+            qb1 = qt1
         pa = _dot(sw, qb0)
         pb = _dot(sw, qb1)
         if (pa if pa < pb else pb) > hwB + slab:
             continue
-        mat_vec(F.M, B.fnormal + 3 * B.efaces[2 * j], c)
-        mat_vec(F.M, B.fnormal + 3 * B.efaces[2 * j + 1], dd)
+        if keep_mb:
+            c[0], c[1], c[2] = mb[3 * B.efaces[2 * j]], mb[3 * B.efaces[2 * j] + 1], mb[3 * B.efaces[2 * j] + 2]
+            dd[0], dd[1], dd[2] = (mb[3 * B.efaces[2 * j + 1]], mb[3 * B.efaces[2 * j + 1] + 1],
+                                   mb[3 * B.efaces[2 * j + 1] + 2])
+        else:
+            mat_vec(F.M, B.fnormal + 3 * B.efaces[2 * j], c)
+            mat_vec(F.M, B.fnormal + 3 * B.efaces[2 * j + 1], dd)
         for i in range(3):
             c[i] = -c[i]
             dd[i] = -dd[i]
@@ -372,17 +398,21 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
         eB[1] = qb1[1] - qb0[1]
         eB[2] = qb1[2] - qb0[2]
         eb2 = _dot(eB, eB)
-        for ii in range(nca if A.ne <= EDGE_BUF else A.ne):
-            i = cand[ii] if A.ne <= EDGE_BUF else ii
+        for ii in range(na):
+            i = cand[ii] if small_a else ii
             a = A.fnormal + 3 * A.efaces[2 * i]
             b = A.fnormal + 3 * A.efaces[2 * i + 1]
             ADC = _dot(a, DxC)
             BDC = _dot(b, DxC)
             if not ADC * BDC < 0.0:
                 continue
-            _cross(b, a, BxA)
-            CBA = _dot(c, BxA)
-            DBA = _dot(dd, BxA)
+            if small_a:
+                bxa = &BxA[3 * ii]
+            else:
+                _cross(b, a, m)
+                bxa = m
+            CBA = _dot(c, bxa)
+            DBA = _dot(dd, bxa)
             if not (CBA * DBA < 0.0 and CBA * BDC > 0.0):
                 continue
             va0 = A.verts + 3 * A.edges[2 * i]
