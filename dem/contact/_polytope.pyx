@@ -302,20 +302,44 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
     cdef double sw[3]              # the best face axis (the slab's direction)
     cdef int cand[EDGE_BUF]
     # per pair, computed once rather than per edge: B's vertices and face normals in A's frame (qb, mb), and
-    # for A's candidate edges b x a of their face normals (BxA)
+    # for A's candidate edges their face normals a, b and b x a, side by side (AC)
     cdef double qb[3 * SUPPORT_BUF]
     cdef double mb[3 * SUPPORT_BUF]
-    cdef double BxA[3 * EDGE_BUF]
+    cdef double AC[9 * EDGE_BUF]
+    cdef double lv[SUPPORT_BUF]    # vertex levels along the slab's direction
     cdef double qt0[3]
     cdef double qt1[3]
     cdef bint keep_qb = B.nv <= SUPPORT_BUF, keep_mb = B.nf <= SUPPORT_BUF, small_a = A.ne <= EDGE_BUF
     cdef int nca, ne_b, ii, k, na
+    cdef double pq[3]              # A's vertex farthest towards B's centre (scaled), and B's towards A's
+    cdef double qp[3]
+    cdef double x, xbest
+    # A face's value is at least what one vertex of B gives instead of B's support (and alike for B's
+    # faces): with the vertex of each body that reaches farthest towards the other's centre, that bound
+    # skips the faces turned away, whose value cannot replace the best of their family (bound >= best, a
+    # whole tie above the round-off of the bound: same answer as evaluating them)
+    if keep_qb:
+        xbest = INFINITY
+        for k in range(B.nv):
+            _b_point(B, F, k, &qb[3 * k])
+            x = _dot(F.t, &qb[3 * k])
+            if x < xbest:
+                xbest = x
+                qp[0], qp[1], qp[2] = qb[3 * k], qb[3 * k + 1], qb[3 * k + 2]
+        xbest = -INFINITY
+        for k in range(A.nv):
+            x = _dot(F.t, A.verts + 3 * k)
+            if x > xbest:
+                xbest = x
+                pq[0], pq[1], pq[2] = F.sa * A.verts[3 * k], F.sa * A.verts[3 * k + 1], F.sa * A.verts[3 * k + 2]
     # faces of A: u = n_f, h_A(u) = sa d_f
     for f in range(A.nf):
         a = A.fnormal + 3 * f
         w[0] = -a[0]
         w[1] = -a[1]
         w[2] = -a[2]
+        if keep_qb and F.sa * A.foffset[f] + _dot(w, qp) >= bestA:
+            continue
         d = F.sa * A.foffset[f] + _hB(B, F, w)
         if d < bestA - tie:
             bestA = d
@@ -331,6 +355,8 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
         w[0] = -m[0]
         w[1] = -m[1]
         w[2] = -m[2]
+        if keep_qb and _dot(w, pq) + _dot(m, F.t) + F.sb * B.foffset[g] >= bestB:
+            continue
         d = _hA(A, F.sa, w) + _dot(m, F.t) + F.sb * B.foffset[g]
         if d < bestB - tie:
             bestB = d
@@ -356,31 +382,43 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
     slab = 2.0 * lim + 4.0 * tie
     nca = 0
     if ne_b and small_a:                  # (a larger A pairs all its edges)
+        if A.nv <= SUPPORT_BUF:           # each vertex's level along w once, not per edge
+            for k in range(A.nv):
+                lv[k] = F.sa * _dot(sw, A.verts + 3 * k)
         for i in range(A.ne):
-            va0 = A.verts + 3 * A.edges[2 * i]
-            va1 = A.verts + 3 * A.edges[2 * i + 1]
-            pa = F.sa * _dot(sw, va0)
-            pb = F.sa * _dot(sw, va1)
+            if A.nv <= SUPPORT_BUF:
+                pa = lv[A.edges[2 * i]]
+                pb = lv[A.edges[2 * i + 1]]
+            else:
+                pa = F.sa * _dot(sw, A.verts + 3 * A.edges[2 * i])
+                pb = F.sa * _dot(sw, A.verts + 3 * A.edges[2 * i + 1])
             if (pa if pa > pb else pb) >= hwA - slab:
                 cand[nca] = i
-                _cross(A.fnormal + 3 * A.efaces[2 * i + 1], A.fnormal + 3 * A.efaces[2 * i], &BxA[3 * nca])
+                a = A.fnormal + 3 * A.efaces[2 * i]
+                b = A.fnormal + 3 * A.efaces[2 * i + 1]
+                for k in range(3):
+                    AC[9 * nca + k] = a[k]
+                    AC[9 * nca + 3 + k] = b[k]
+                _cross(b, a, &AC[9 * nca + 6])
                 nca += 1
-    if ne_b and keep_qb:
-        for k in range(B.nv):
-            _b_point(B, F, k, &qb[3 * k])
     na = nca if small_a else A.ne
     hwB = hwA - lim                       # -h_B(-w): B's lowest value along w
+    if ne_b and keep_qb:
+        for k in range(B.nv):
+            lv[k] = _dot(sw, &qb[3 * k])
     for j in range(ne_b):
         if keep_qb:
             qb0 = &qb[3 * B.edges[2 * j]]
             qb1 = &qb[3 * B.edges[2 * j + 1]]
+            pa = lv[B.edges[2 * j]]
+            pb = lv[B.edges[2 * j + 1]]
         else:
             _b_point(B, F, B.edges[2 * j], qt0)
             _b_point(B, F, B.edges[2 * j + 1], qt1)
             qb0 = qt0
             qb1 = qt1
-        pa = _dot(sw, qb0)
-        pb = _dot(sw, qb1)
+            pa = _dot(sw, qb0)
+            pb = _dot(sw, qb1)
         if (pa if pa < pb else pb) > hwB + slab:
             continue
         if keep_mb:
@@ -399,16 +437,21 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
         eB[2] = qb1[2] - qb0[2]
         eb2 = _dot(eB, eB)
         for ii in range(na):
-            i = cand[ii] if small_a else ii
-            a = A.fnormal + 3 * A.efaces[2 * i]
-            b = A.fnormal + 3 * A.efaces[2 * i + 1]
+            if small_a:
+                a = &AC[9 * ii]
+                b = &AC[9 * ii + 3]
+            else:
+                a = A.fnormal + 3 * A.efaces[2 * ii]
+                b = A.fnormal + 3 * A.efaces[2 * ii + 1]
             ADC = _dot(a, DxC)
             BDC = _dot(b, DxC)
             if not ADC * BDC < 0.0:
                 continue
             if small_a:
-                bxa = &BxA[3 * ii]
+                i = cand[ii]
+                bxa = &AC[9 * ii + 6]
             else:
+                i = ii
                 _cross(b, a, m)
                 bxa = m
             CBA = _dot(c, bxa)
