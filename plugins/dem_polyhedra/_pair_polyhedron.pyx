@@ -153,7 +153,7 @@ cdef inline i64 _match(const KeyedView* h, i64 k, const double* b, double tol2, 
 
 def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, const double[:, :, ::1] coeff,
             ShapeView shapes, const double[:, ::1] rot, const double[::1] move,
-            double[::1] margin, double[::1] stats, KeyedBuffers hist, bint use_xi, double ftol_rel, double dt,
+            double[::1] margin, int[::1] cert_code, double[::1] cert_budget, double[::1] stats, KeyedBuffers hist, bint use_xi, double ftol_rel, double dt,
             bint advance, double[:, ::1] rec, i64[:, ::1] rec_ij, i64[::1] nrec, i64 start):
     """Adds the contact forces and torques of list entries from `start` on; returns -1, or the entry to
     resume from when the history buffer is full (dem/_history.pxd). stats receives STATS (summed; the
@@ -166,14 +166,17 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
     dem_convex's poses, once per step. margin[k] caches a lower bound of the gap of entry k (bounding
     spheres, or the largest separation along a candidate axis of the separating-axis query); it shrinks by
     move[i] + move[j] per call and the pair is skipped while it stays positive: the test would find it apart
-    again, and an apart pair has no record, so the cache changes no result (as `convex/gjk`)."""
+    again, and an apart pair has no record, so the cache changes no result (as `convex/gjk`).
+    cert_code[k], cert_budget[k]: entry k's certificate of its separating axis (polytope_contact), zeroed
+    with the margins; kept only while the pair goes through the test at every call, since the budget is
+    spent by the moves of each call."""
     cdef Particles particles = view.p
     cdef const Particles* P = &particles
     cdef TableView table = shapes.t
     cdef const TableView* T = &table
     cdef const TopoTable* TT = &T.topo
     cdef KeyedView* h = &hist.view
-    cdef int i, j, d, q, npt, si, sj, typ, sb = -1
+    cdef int i, j, d, q, npt, si, sj, typ, sb = -1, code
     cdef i64 k, r, resume = -1, fresh
     cdef double dx[3]
     cdef double Ri[9]
@@ -203,6 +206,8 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     margin[k] = gap
                     continue                   # still apart (no record: the pair's history is forgotten)
                 margin[k] = 0.0
+                code = cert_code[k]            # a certificate holds only over consecutive queries
+                cert_code[k] = 0
                 for d in range(3):
                     dx[d] = P.x[3 * i + d] - P.x[3 * j + d]
                 r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]
@@ -247,8 +252,10 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                             continue
                     # contacting features: the vertices within ftol of the deepest one along the normal,
                     # ftol = ftol_rel L + the overlap, i.e. every vertex inside the overlap slab
+                    cert_code[k] = code
                     npt = polytope_contact(&A, Ri, si_scale, &P.x[3 * i], &B, Rj, sj_scale, &P.x[3 * j],
-                                           ftol_rel * rsum, 1.0, &sat, &pc)
+                                           ftol_rel * rsum, 1.0, &sat, &pc, &cert_code[k], &cert_budget[k],
+                                           move[i] + move[j])
                     if not npt:
                         margin[k] = -sat.depth - MARGIN_SAFETY * rsum
                     typ = pc.type
