@@ -61,7 +61,7 @@ from dem.shapes._table cimport topology_pointers
 cdef double SAT_TIE = 1e-12        # relative (to the bounding radii) tolerance of axis ties
 cdef double SAT_PARALLEL = 1e-12   # |sin| of two edges below which they are parallel (skipped)
 cdef double SAT_SMALLSIN = 1e-4    # below this |sin| an edge axis is evaluated from the full supports
-cdef double CERT_SLAB = 0.02       # edge slab widening (relative to L) when a certificate is computed (_budget)
+cdef double CERT_SLAB = 0.005      # edge slab widening (relative to L) when a certificate is computed (_budget)
 cdef enum:
     EDGE_BUF = 256                 # edges of A pruned by the overlap slab in _sat_frame (a larger A pairs them all)
     SUPPORT_BUF = 256              # support values kept per body in _feature (larger bodies recompute)
@@ -612,6 +612,8 @@ cdef double _budget(const Polytope* A, const Polytope* B, const Frame* F, const 
     * B's points move in A's frame by D <= kappa mu, kappa = 2.5 + 2 r_max / r_min, and the bodies turn
       relative to each other by phi <= 1.6 mu / r_min; a facet whose normal turns by w changes by at most
       D + 2 L w: faces of A (w = 0), faces of B (phi), edge pairs (2 phi / sin, fast for parallel edges);
+      the winner itself by at most D + w (V0 + D) (its value is u.y at the pair of material points whose
+      difference y was the foot V0 u0; mu is kept below r_min / (100 kappa), so that w D <= 0.016 w mu);
     * every facet other than the winner: either its normal lies outside the cap of angle alpha around
       u0, where the support function at the start is >= min(V0 + gap, V0 cos alpha + rho sin alpha)
       (its minima are facet normals, or on the cap's rim, where the disk of radius rho around the foot of
@@ -731,15 +733,15 @@ cdef double _budget(const Polytope* A, const Polytope* B, const Frame* F, const 
         rho = sqrt(aa) * (sr if sr < 1.0 - sr else 1.0 - sr)
         x = sqrt(bb) * (rr if rr < 1.0 - rr else 1.0 - rr)
         rho = sn * (rho if rho < x else x)
-        w = 4.0 / sn                   # (2 / sin, with the sine kept above half its start: c3 below)
-        c3 = sn * rmin / 3.2
+        w = 2.25 / sn                  # (2 / sin, with the sine kept above 0.9 its start: c3 below)
+        c3 = 0.1 * sn * rmin / 1.6
     # the cap: A's lead (fixed in A's frame) bounds it alone; B's lead is shared between the cap and B's
     # motion, split where the rim term and B's term allow the same budget
     alpha = 0.5
     if epsA < INFINITY:
         alpha = 0.45 * epsA / ra
     if epsB < INFINITY:
-        x = epsB / (2.0 * rb + 2.0 * kappa * rho / (2.0 * kappa + 3.2 * F.L * w / rmin))
+        x = epsB / (2.0 * rb + 2.0 * kappa * rho / (2.0 * kappa + 1.6 * w * V0 / rmin + 0.016 * w))
         if x < alpha:
             alpha = x
     if alpha > 0.5:
@@ -750,8 +752,11 @@ cdef double _budget(const Polytope* A, const Polytope* B, const Frame* F, const 
         x = (epsB - 2.0 * rb * alpha) / (2.0 * kappa)
         if x < c3:
             c3 = x
-    budget = (gap - m) / (2.0 * kappa + 3.2 * F.L * (1.0 + w) / rmin)
-    x = (rho * sin(alpha) - V0 * (1.0 - cos(alpha)) - m) / (2.0 * kappa + 3.2 * F.L * w / rmin)
+    x = 1.6 * w * V0 / rmin + 0.016 * w             # the winner's turn, per mu
+    budget = (gap - m) / (2.0 * kappa + 3.2 * F.L / rmin + x)
+    if 0.01 * rmin / kappa < budget:
+        budget = 0.01 * rmin / kappa
+    x = (rho * sin(alpha) - V0 * (1.0 - cos(alpha)) - m) / (2.0 * kappa + x)
     if x < budget:
         budget = x
     if c3 < budget:
