@@ -1369,6 +1369,8 @@ cdef int polytope_contact(const Polytope* A, const double* Ra, double sa, const 
     if code != NULL and code[0] > 0 and budget[0] > moved and _sat_cached(A, B, &F, code[0], u, sat):
         budget[0] -= moved
         hit = sat.depth > 0.0
+        if not hit:                    # (the caller's margin then skips it: its moves would go uncounted)
+            code[0] = 0
     else:
         if code != NULL:
             budget[0] = 0.0            # (two boxes leave it: no certificate)

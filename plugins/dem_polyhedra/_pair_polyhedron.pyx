@@ -169,14 +169,15 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
     again, and an apart pair has no record, so the cache changes no result (as `convex/gjk`).
     cert_code[k], cert_budget[k]: entry k's certificate of its separating axis (polytope_contact), zeroed
     with the margins; kept only while the pair goes through the test at every call, since the budget is
-    spent by the moves of each call."""
+    spent by the moves of each call (a pair found apart has none: polytope_contact drops it, the culls
+    above zero it)."""
     cdef Particles particles = view.p
     cdef const Particles* P = &particles
     cdef TableView table = shapes.t
     cdef const TableView* T = &table
     cdef const TopoTable* TT = &T.topo
     cdef KeyedView* h = &hist.view
-    cdef int i, j, d, q, npt, si, sj, typ, sb = -1, code
+    cdef int i, j, d, q, npt, si, sj, typ, sb = -1
     cdef i64 k, r, resume = -1, fresh
     cdef double dx[3]
     cdef double Ri[9]
@@ -206,14 +207,13 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     margin[k] = gap
                     continue                   # still apart (no record: the pair's history is forgotten)
                 margin[k] = 0.0
-                code = cert_code[k]            # a certificate holds only over consecutive queries
-                cert_code[k] = 0
                 for d in range(3):
                     dx[d] = P.x[3 * i + d] - P.x[3 * j + d]
                 r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]
                 rsum = P.radius[i] + P.radius[j]
                 if r2 >= rsum * rsum:
                     margin[k] = sqrt(r2) - rsum - MARGIN_SAFETY * rsum
+                    cert_code[k] = 0           # a certificate holds only over consecutive queries
                     continue
                 if si < 0:
                     si = P.shape[i]
@@ -249,13 +249,17 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                                         Rj, 1.0, &P.x[3 * j], &T.half[3 * sj], sj_scale)
                         if gap > 0.0:
                             margin[k] = gap - MARGIN_SAFETY * rsum
+                            cert_code[k] = 0
                             continue
                     # contacting features: the vertices within ftol of the deepest one along the normal,
                     # ftol = ftol_rel L + the overlap, i.e. every vertex inside the overlap slab
-                    cert_code[k] = code
-                    npt = polytope_contact(&A, Ri, si_scale, &P.x[3 * i], &B, Rj, sj_scale, &P.x[3 * j],
-                                           ftol_rel * rsum, 1.0, &sat, &pc, &cert_code[k], &cert_budget[k],
-                                           move[i] + move[j])
+                    if A.half != NULL and B.half != NULL:   # (two boxes: closed form, no certificate)
+                        npt = polytope_contact(&A, Ri, si_scale, &P.x[3 * i], &B, Rj, sj_scale, &P.x[3 * j],
+                                               ftol_rel * rsum, 1.0, &sat, &pc, NULL, NULL, 0.0)
+                    else:
+                        npt = polytope_contact(&A, Ri, si_scale, &P.x[3 * i], &B, Rj, sj_scale, &P.x[3 * j],
+                                               ftol_rel * rsum, 1.0, &sat, &pc, &cert_code[k], &cert_budget[k],
+                                               move[i] + move[j])
                     if not npt:
                         margin[k] = -sat.depth - MARGIN_SAFETY * rsum
                     typ = pc.type
