@@ -243,8 +243,10 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     if sj != sb:               # (consecutive neighbours mostly share a shape)
                         polytope_ref(TT, sj, &B)
                         sb = sj
-                    # bounding boxes first, unless both are boxes (the query itself stops at a gap)
-                    if A.half == NULL or B.half == NULL:
+                    # bounding boxes first, unless both are boxes (the query itself stops at a gap) or the
+                    # pair holds a certificate (a lasting contact: its axis is evaluated alone)
+                    if ((A.half == NULL or B.half == NULL)
+                            and not (cert_code[k] > 0 and cert_budget[k] > move[i] + move[j])):
                         gap = boxes_gap(Ri, 1.0, &P.x[3 * i], &T.half[3 * si], si_scale,
                                         Rj, 1.0, &P.x[3 * j], &T.half[3 * sj], sj_scale)
                         if gap > 0.0:
