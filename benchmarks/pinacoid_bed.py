@@ -23,7 +23,7 @@ from dem.shapes import pinacoid_volume
 
 # inputs/in.pinacoid_packing, Table 1 (units of d_sph, rho = g = 1): the mean pinacoid, L = G = E
 E = 1 / math.sqrt(2)
-V = pinacoid_volume(E, E, E, 60.0)
+V = float(pinacoid_volume(E, E, E, 60.0))     # (a numpy scalar would print as np.float64(...) in the script)
 T_INERTIA = math.sqrt((6 * V / math.pi) ** (1 / 3))
 
 

@@ -92,4 +92,5 @@ cdef int contact_points(const Polytope* A, const double* Ra, double sa, const do
 
 cdef int polytope_contact(const Polytope* A, const double* Ra, double sa, const double* xa,
                           const Polytope* B, const double* Rb, double sb, const double* xb,
-                          double ftol, double ftol_depth, SatResult* sat, PolyContact* out) noexcept nogil
+                          double ftol, double ftol_depth, SatResult* sat, PolyContact* out,
+                          int* code, double* budget, double moved) noexcept nogil

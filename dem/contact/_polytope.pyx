@@ -30,6 +30,12 @@ edges that reach into the overlap slab of the best face axis (exact, see _sat_fr
 worst, a few pairs for the shallow contacts of a packing. Two boxes take the closed-form 15 axes of
 _sat_box instead (the same candidates, values and tie rules; tests/test_polytope.py compares the two).
 
+Lasting contacts (polytope_contact with a certificate): the full test also bounds how far the two bodies
+may move with its winning axis staying the strict minimum (_budget: a gap to every other facet of A - B
+that outlasts their motion, including facets that turn fast or appear); while the moves since then stay
+within it, only that axis is evaluated, by the same code, so the answer is the one the full test would
+give, bit for bit.
+
 Contact points (contact_points)
 -------------------------------
 With u = -n (from A towards B) and the depth, the contacting feature of A is its vertices whose support
@@ -46,7 +52,7 @@ canonical: the point with the lowest plane coordinates first, then counter-clock
 input gives the same bits. All points share the maximum overlap (Descantes' law, eq. 3).
 """
 import numpy as np
-from libc.math cimport sqrt, fabs, INFINITY
+from libc.math cimport sqrt, fabs, sin, cos, INFINITY
 
 from dem._math cimport mat_vec, mat_tvec
 from dem.shapes._support cimport quat_to_rot
@@ -55,6 +61,7 @@ from dem.shapes._table cimport topology_pointers
 cdef double SAT_TIE = 1e-12        # relative (to the bounding radii) tolerance of axis ties
 cdef double SAT_PARALLEL = 1e-12   # |sin| of two edges below which they are parallel (skipped)
 cdef double SAT_SMALLSIN = 1e-4    # below this |sin| an edge axis is evaluated from the full supports
+cdef double CERT_SLAB = 0.005      # edge slab widening (relative to L) when a certificate is computed (_budget)
 cdef enum:
     EDGE_BUF = 256                 # edges of A pruned by the overlap slab in _sat_frame (a larger A pairs them all)
     SUPPORT_BUF = 256              # support values kept per body in _feature (larger bodies recompute)
@@ -272,9 +279,97 @@ cdef int _sat_box(const Polytope* A, const Polytope* B, const Frame* F, double* 
     return 1 if out.depth > 0.0 else 0
 
 
-cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double* u_out, SatResult* out) noexcept nogil:
+cdef inline double _face_a_value(const Polytope* A, const Polytope* B, const Frame* F, int f) noexcept nogil:
+    """Value of A's face f: h_A(n_f) + h_B(-n_f) = sa d_f + h_B(-n_f)."""
+    cdef double w[3]
+    cdef const double* a = A.fnormal + 3 * f
+    w[0] = -a[0]
+    w[1] = -a[1]
+    w[2] = -a[2]
+    return F.sa * A.foffset[f] + _hB(B, F, w)
+
+
+cdef inline double _face_b_value(const Polytope* A, const Polytope* B, const Frame* F, int g,
+                                 const double* m) noexcept nogil:
+    """Value of B's face g, m = M n_g (its outward normal in A's frame): h_A(-m) + m.t + sb d_g."""
+    cdef double w[3]
+    w[0] = -m[0]
+    w[1] = -m[1]
+    w[2] = -m[2]
+    return _hA(A, F.sa, w) + _dot(m, F.t) + F.sb * B.foffset[g]
+
+
+cdef inline double _edge_value(const Polytope* A, const Polytope* B, const Frame* F, int i, const double* qb0,
+                               const double* eB, double eb2, const double* a, const double* b, double* u,
+                               double* d) noexcept nogil:
+    """Axis u (unit, oriented into arc (a, b) of A's edge i) and value d of A's edge i against B's edge from
+    qb0 along eB (A's frame, eb2 = eB.eB) when their arcs cross; returns the squared sine of their angle (no
+    axis when <= SAT_PARALLEL^2)."""
+    cdef const double* va0 = A.verts + 3 * A.edges[2 * i]
+    cdef const double* va1 = A.verts + 3 * A.edges[2 * i + 1]
+    cdef double eA[3]
+    cdef double w[3]
+    cdef double ea2, l2, s2
+    eA[0] = F.sa * (va1[0] - va0[0])
+    eA[1] = F.sa * (va1[1] - va0[1])
+    eA[2] = F.sa * (va1[2] - va0[2])
+    ea2 = _dot(eA, eA)
+    _cross(eA, eB, u)
+    l2 = _dot(u, u)
+    s2 = l2 / (ea2 * eb2)
+    if s2 <= SAT_PARALLEL * SAT_PARALLEL:
+        return s2
+    l2 = 1.0 / sqrt(l2)
+    u[0] *= l2
+    u[1] *= l2
+    u[2] *= l2
+    if u[0] * (a[0] + b[0]) + u[1] * (a[1] + b[1]) + u[2] * (a[2] + b[2]) < 0.0:
+        u[0] = -u[0]
+        u[1] = -u[1]
+        u[2] = -u[2]
+    if s2 < SAT_SMALLSIN * SAT_SMALLSIN:
+        w[0] = -u[0]
+        w[1] = -u[1]
+        w[2] = -u[2]
+        d[0] = _hA(A, F.sa, u) + _hB(B, F, w)
+    else:
+        d[0] = (u[0] * (F.sa * va0[0] - qb0[0]) + u[1] * (F.sa * va0[1] - qb0[1])
+                + u[2] * (F.sa * va0[2] - qb0[2]))
+    return s2
+
+
+cdef inline bint _arcs_cross(const double* a, const double* b, const double* c, const double* dd) noexcept nogil:
+    """Gregorius' test: arc (a, b) of A and arc (c, d) of B (B's normals negated) cross (the edge loop of
+    _sat_frame runs the same products, split to reuse them)."""
+    cdef double DxC[3]
+    cdef double BxA[3]
+    cdef double ADC, BDC, CBA, DBA
+    _cross(dd, c, DxC)
+    ADC = _dot(a, DxC)
+    BDC = _dot(b, DxC)
+    if not ADC * BDC < 0.0:
+        return False
+    _cross(b, a, BxA)
+    CBA = _dot(c, BxA)
+    DBA = _dot(dd, BxA)
+    return CBA * DBA < 0.0 and CBA * BDC > 0.0
+
+
+cdef inline void _keep2(double* m1, double* m2, double x) noexcept nogil:
+    """The two smallest values seen."""
+    if x < m1[0]:
+        m2[0] = m1[0]
+        m1[0] = x
+    elif x < m2[0]:
+        m2[0] = x
+
+
+cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double* u_out, SatResult* out,
+                    double* cert) noexcept nogil:
     """The separating-axis minimum in A's frame: out (depth, axis, fa, fb) and u_out (from A towards B).
-    Returns 1 when depth > 0 (overlap). Two boxes take the closed-form path _sat_box."""
+    Returns 1 when depth > 0 (overlap). Two boxes take the closed-form path _sat_box. With cert (not
+    NULL), cert[0] receives how far the two bodies may move (sum of their `move`) with this axis staying
+    the minimum (_budget; 0: no such certificate), the edge slab then widened by CERT_SLAB L."""
     if A.half != NULL and B.half != NULL:
         return _sat_box(A, B, F, u_out, out)
     cdef double tie = SAT_TIE * F.L
@@ -288,9 +383,6 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
     cdef double c[3]
     cdef double dd[3]
     cdef double DxC[3]
-    cdef double BxA[3]
-    cdef double qb0[3]
-    cdef double qb1[3]
     cdef double eB[3]
     cdef double eA[3]
     cdef double w[3]
@@ -298,17 +390,59 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
     cdef const double* b
     cdef const double* va0
     cdef const double* va1
+    cdef const double* qb0
+    cdef const double* qb1
+    cdef const double* bxa
     cdef double CBA, DBA, ADC, BDC, s2, lim, slab, hwA, hwB, pa, pb
     cdef double sw[3]              # the best face axis (the slab's direction)
     cdef int cand[EDGE_BUF]
-    cdef int nca, ne_b, ii, k
+    # per pair, computed once rather than per edge: B's vertices and face normals in A's frame (qb, mb), and
+    # for A's candidate edges their face normals a, b and b x a, side by side (AC)
+    cdef double qb[3 * SUPPORT_BUF]
+    cdef double mb[3 * SUPPORT_BUF]
+    cdef double AC[9 * EDGE_BUF]
+    cdef double lv[SUPPORT_BUF]    # vertex levels along the slab's direction
+    cdef double qt0[3]
+    cdef double qt1[3]
+    cdef bint keep_qb = B.nv <= SUPPORT_BUF, keep_mb = B.nf <= SUPPORT_BUF, small_a = A.ne <= EDGE_BUF
+    cdef int nca, ne_b, ii, k, na
+    cdef double pq[3]              # A's vertex farthest towards B's centre (scaled), and B's towards A's
+    cdef double qp[3]
+    cdef double x, xbest
+    cdef double min1 = INFINITY, min2 = INFINITY    # the two smallest candidate values (or bounds), for cert
+    # A face's value is at least what one vertex of B gives instead of B's support (and alike for B's
+    # faces): with the vertex of each body that reaches farthest towards the other's centre, that bound
+    # skips the faces turned away, whose value cannot replace the best of their family (bound >= best, a
+    # whole tie above the round-off of the bound: same answer as evaluating them)
+    if keep_qb:
+        xbest = INFINITY
+        for k in range(B.nv):
+            _b_point(B, F, k, &qb[3 * k])
+            x = _dot(F.t, &qb[3 * k])
+            if x < xbest:
+                xbest = x
+                qp[0], qp[1], qp[2] = qb[3 * k], qb[3 * k + 1], qb[3 * k + 2]
+        xbest = -INFINITY
+        for k in range(A.nv):
+            x = _dot(F.t, A.verts + 3 * k)
+            if x > xbest:
+                xbest = x
+                pq[0], pq[1], pq[2] = F.sa * A.verts[3 * k], F.sa * A.verts[3 * k + 1], F.sa * A.verts[3 * k + 2]
     # faces of A: u = n_f, h_A(u) = sa d_f
     for f in range(A.nf):
         a = A.fnormal + 3 * f
         w[0] = -a[0]
         w[1] = -a[1]
         w[2] = -a[2]
-        d = F.sa * A.foffset[f] + _hB(B, F, w)
+        if keep_qb:
+            d = F.sa * A.foffset[f] + _dot(w, qp)
+            if d >= bestA:
+                if cert != NULL:
+                    _keep2(&min1, &min2, d)
+                continue
+        d = _face_a_value(A, B, F, f)
+        if cert != NULL:
+            _keep2(&min1, &min2, d)
         if d < bestA - tie:
             bestA = d
             fa = f
@@ -318,10 +452,20 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
     # faces of B: m = M n_g (outward of B, in A's frame), u = -m, h_B(-u) = m.t + sb d_g
     for g in range(B.nf):
         mat_vec(F.M, B.fnormal + 3 * g, m)
+        if keep_mb:
+            mb[3 * g], mb[3 * g + 1], mb[3 * g + 2] = m[0], m[1], m[2]
         w[0] = -m[0]
         w[1] = -m[1]
         w[2] = -m[2]
-        d = _hA(A, F.sa, w) + _dot(m, F.t) + F.sb * B.foffset[g]
+        if keep_qb:
+            d = _dot(w, pq) + _dot(m, F.t) + F.sb * B.foffset[g]
+            if d >= bestB:
+                if cert != NULL:
+                    _keep2(&min1, &min2, d)
+                continue
+        d = _face_b_value(A, B, F, g, m)
+        if cert != NULL:
+            _keep2(&min1, &min2, d)
         if d < bestB - tie:
             bestB = d
             fb = g
@@ -344,26 +488,57 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
         hwA = _hA(A, F.sa, sw)
     ne_b = B.ne if lim > 0.0 else 0
     slab = 2.0 * lim + 4.0 * tie
+    if cert != NULL and ne_b:             # pruned pairs are then above lim + CERT_SLAB L + 4 tie
+        slab += CERT_SLAB * F.L
+        _keep2(&min1, &min2, lim + CERT_SLAB * F.L + 4.0 * tie)
     nca = 0
-    if ne_b and A.ne <= EDGE_BUF:         # (a larger A pairs all its edges)
+    if ne_b and small_a:                  # (a larger A pairs all its edges)
+        if A.nv <= SUPPORT_BUF:           # each vertex's level along w once, not per edge
+            for k in range(A.nv):
+                lv[k] = F.sa * _dot(sw, A.verts + 3 * k)
         for i in range(A.ne):
-            va0 = A.verts + 3 * A.edges[2 * i]
-            va1 = A.verts + 3 * A.edges[2 * i + 1]
-            pa = F.sa * _dot(sw, va0)
-            pb = F.sa * _dot(sw, va1)
+            if A.nv <= SUPPORT_BUF:
+                pa = lv[A.edges[2 * i]]
+                pb = lv[A.edges[2 * i + 1]]
+            else:
+                pa = F.sa * _dot(sw, A.verts + 3 * A.edges[2 * i])
+                pb = F.sa * _dot(sw, A.verts + 3 * A.edges[2 * i + 1])
             if (pa if pa > pb else pb) >= hwA - slab:
                 cand[nca] = i
+                a = A.fnormal + 3 * A.efaces[2 * i]
+                b = A.fnormal + 3 * A.efaces[2 * i + 1]
+                for k in range(3):
+                    AC[9 * nca + k] = a[k]
+                    AC[9 * nca + 3 + k] = b[k]
+                _cross(b, a, &AC[9 * nca + 6])
                 nca += 1
+    na = nca if small_a else A.ne
     hwB = hwA - lim                       # -h_B(-w): B's lowest value along w
+    if ne_b and keep_qb:
+        for k in range(B.nv):
+            lv[k] = _dot(sw, &qb[3 * k])
     for j in range(ne_b):
-        _b_point(B, F, B.edges[2 * j], qb0)
-        _b_point(B, F, B.edges[2 * j + 1], qb1)
-        pa = _dot(sw, qb0)
-        pb = _dot(sw, qb1)
+        if keep_qb:
+            qb0 = &qb[3 * B.edges[2 * j]]
+            qb1 = &qb[3 * B.edges[2 * j + 1]]
+            pa = lv[B.edges[2 * j]]
+            pb = lv[B.edges[2 * j + 1]]
+        else:
+            _b_point(B, F, B.edges[2 * j], qt0)
+            _b_point(B, F, B.edges[2 * j + 1], qt1)
+            qb0 = qt0
+            qb1 = qt1
+            pa = _dot(sw, qb0)
+            pb = _dot(sw, qb1)
         if (pa if pa < pb else pb) > hwB + slab:
             continue
-        mat_vec(F.M, B.fnormal + 3 * B.efaces[2 * j], c)
-        mat_vec(F.M, B.fnormal + 3 * B.efaces[2 * j + 1], dd)
+        if keep_mb:
+            c[0], c[1], c[2] = mb[3 * B.efaces[2 * j]], mb[3 * B.efaces[2 * j] + 1], mb[3 * B.efaces[2 * j] + 2]
+            dd[0], dd[1], dd[2] = (mb[3 * B.efaces[2 * j + 1]], mb[3 * B.efaces[2 * j + 1] + 1],
+                                   mb[3 * B.efaces[2 * j + 1] + 2])
+        else:
+            mat_vec(F.M, B.fnormal + 3 * B.efaces[2 * j], c)
+            mat_vec(F.M, B.fnormal + 3 * B.efaces[2 * j + 1], dd)
         for i in range(3):
             c[i] = -c[i]
             dd[i] = -dd[i]
@@ -372,46 +547,33 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
         eB[1] = qb1[1] - qb0[1]
         eB[2] = qb1[2] - qb0[2]
         eb2 = _dot(eB, eB)
-        for ii in range(nca if A.ne <= EDGE_BUF else A.ne):
-            i = cand[ii] if A.ne <= EDGE_BUF else ii
-            a = A.fnormal + 3 * A.efaces[2 * i]
-            b = A.fnormal + 3 * A.efaces[2 * i + 1]
+        for ii in range(na):
+            if small_a:
+                a = &AC[9 * ii]
+                b = &AC[9 * ii + 3]
+            else:
+                a = A.fnormal + 3 * A.efaces[2 * ii]
+                b = A.fnormal + 3 * A.efaces[2 * ii + 1]
             ADC = _dot(a, DxC)
             BDC = _dot(b, DxC)
             if not ADC * BDC < 0.0:
                 continue
-            _cross(b, a, BxA)
-            CBA = _dot(c, BxA)
-            DBA = _dot(dd, BxA)
+            if small_a:
+                i = cand[ii]
+                bxa = &AC[9 * ii + 6]
+            else:
+                i = ii
+                _cross(b, a, m)
+                bxa = m
+            CBA = _dot(c, bxa)
+            DBA = _dot(dd, bxa)
             if not (CBA * DBA < 0.0 and CBA * BDC > 0.0):
                 continue
-            va0 = A.verts + 3 * A.edges[2 * i]
-            va1 = A.verts + 3 * A.edges[2 * i + 1]
-            eA[0] = F.sa * (va1[0] - va0[0])
-            eA[1] = F.sa * (va1[1] - va0[1])
-            eA[2] = F.sa * (va1[2] - va0[2])
-            ea2 = _dot(eA, eA)
-            _cross(eA, eB, u)
-            l2 = _dot(u, u)
-            s2 = l2 / (ea2 * eb2)
+            s2 = _edge_value(A, B, F, i, qb0, eB, eb2, a, b, u, &d)
             if s2 <= SAT_PARALLEL * SAT_PARALLEL:
                 continue
-            l2 = 1.0 / sqrt(l2)
-            u[0] *= l2
-            u[1] *= l2
-            u[2] *= l2
-            if u[0] * (a[0] + b[0]) + u[1] * (a[1] + b[1]) + u[2] * (a[2] + b[2]) < 0.0:
-                u[0] = -u[0]
-                u[1] = -u[1]
-                u[2] = -u[2]
-            if s2 < SAT_SMALLSIN * SAT_SMALLSIN:
-                w[0] = -u[0]
-                w[1] = -u[1]
-                w[2] = -u[2]
-                d = _hA(A, F.sa, u) + _hB(B, F, w)
-            else:
-                d = (u[0] * (F.sa * va0[0] - qb0[0]) + u[1] * (F.sa * va0[1] - qb0[1])
-                     + u[2] * (F.sa * va0[2] - qb0[2]))
+            if cert != NULL:
+                _keep2(&min1, &min2, d)
             if d < bestE - tie:
                 bestE = d
                 ea = i
@@ -433,7 +595,226 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
     if ea >= 0 and bestE < out.depth - tie:
         out.axis, out.fa, out.fb, out.depth = AXIS_EDGE, ea, eb, bestE
         u_out[0], u_out[1], u_out[2] = uE[0], uE[1], uE[2]
+    if cert != NULL:
+        cert[0] = 0.0
+        if keep_qb and out.depth > 0.0 and min1 == out.depth and min2 > min1:
+            cert[0] = _budget(A, B, F, out, u_out, min2 - min1, qb)
     return 1 if out.depth > 0.0 else 0
+
+
+cdef double _budget(const Polytope* A, const Polytope* B, const Frame* F, const SatResult* out,
+                    const double* u0, double gap, const double* qb) noexcept nogil:
+    """How far the bodies may move (mu = the sum of their `move`, dem_convex.poses: how far any point of
+    each moved) with the winning axis of out staying the strict minimum, its value below every other
+    facet's by more than 8 ties: then the full test would choose it again, with the same value and normal
+    (_sat_cached computes them by the same code). At the minimum (value V0 > 0, normal u0, gap = the next
+    candidate's value or bound minus V0):
+    * B's points move in A's frame by D <= kappa mu, kappa = 2.5 + 2 r_max / r_min, and the bodies turn
+      relative to each other by phi <= 1.6 mu / r_min; a facet whose normal turns by w changes by at most
+      D + 2 L w: faces of A (w = 0), faces of B (phi), edge pairs (2 phi / sin, fast for parallel edges);
+      the winner itself by at most D + w (V0 + D) (its value is u.y at the pair of material points whose
+      difference y was the foot V0 u0; mu is kept below r_min / (100 kappa), so that w D <= 0.016 w mu);
+    * every facet other than the winner: either its normal lies outside the cap of angle alpha around
+      u0, where the support function at the start is >= min(V0 + gap, V0 cos alpha + rho sin alpha)
+      (its minima are facet normals, or on the cap's rim, where the disk of radius rho around the foot of
+      the origin in the winning facet bounds it), so it stays above that minus D; or inside the cap, where
+      the winning features stay each body's only support (their lead eps over the other vertices exceeds
+      2 r alpha + 2 D), so that no other arc, face normal or crossing enters: only slow faces, bounded
+      by the gap.
+    Returns the smallest mu allowed by these conditions (0: none)."""
+    cdef double ra = F.sa * A.radius, rb = F.sb * B.radius, rmin, kappa, w, m, V0 = out.depth
+    cdef double rho = INFINITY, eps, epsA = INFINITY, epsB = INFINITY, alpha, c3 = INFINITY, x, top, sec
+    cdef double p[3]
+    cdef double e[3]
+    cdef double y[3]
+    cdef double eA[3]
+    cdef double eB[3]
+    cdef double nn[3]
+    cdef double ab, aa, bb, ay, by, det, sr, rr, sn, budget
+    cdef const double* v0
+    cdef const double* v1
+    cdef int k, n, vtop = -1, i, j, first
+    rmin = ra if ra < rb else rb
+    kappa = 2.5 + 2.0 * (ra if ra > rb else rb) / rmin
+    m = 8.0 * SAT_TIE * F.L
+    if out.axis == AXIS_FACE_A:
+        top = sec = -INFINITY          # B's support along -u0 and its lead
+        for k in range(B.nv):
+            x = -_dot(u0, &qb[3 * k])
+            if x > top:
+                sec = top
+                top = x
+                vtop = k
+            elif x > sec:
+                sec = x
+        epsB = top - sec
+        for k in range(3):             # the vertex projected on face fa, and its inset in that polygon
+            p[k] = qb[3 * vtop + k] + V0 * u0[k]
+        first = A.ffirst[out.fa]
+        n = A.fcount[out.fa]
+        for k in range(n):
+            v0 = A.verts + 3 * A.fverts[first + k]
+            v1 = A.verts + 3 * A.fverts[first + (k + 1) % n]
+            for i in range(3):
+                e[i] = F.sa * (v1[i] - v0[i])
+                y[i] = p[i] - F.sa * v0[i]
+            _cross(u0, e, nn)          # inward in the face's plane (counter-clockwise from outside)
+            x = _dot(nn, y) / sqrt(_dot(e, e))
+            if x < rho:
+                rho = x
+        w = 0.0
+    elif out.axis == AXIS_FACE_B:
+        top = sec = -INFINITY          # A's support along u0 and its lead
+        for k in range(A.nv):
+            x = F.sa * _dot(u0, A.verts + 3 * k)
+            if x > top:
+                sec = top
+                top = x
+                vtop = k
+            elif x > sec:
+                sec = x
+        epsA = top - sec
+        for k in range(3):
+            p[k] = F.sa * A.verts[3 * vtop + k] - V0 * u0[k]
+            nn[k] = -u0[k]             # B's outward normal
+        first = B.ffirst[out.fb]
+        n = B.fcount[out.fb]
+        for k in range(n):
+            v0 = &qb[3 * B.fverts[first + k]]
+            v1 = &qb[3 * B.fverts[first + (k + 1) % n]]
+            for i in range(3):
+                e[i] = v1[i] - v0[i]
+                y[i] = p[i] - v0[i]
+            _cross(nn, e, eA)
+            x = _dot(eA, y) / sqrt(_dot(e, e))
+            if x < rho:
+                rho = x
+        w = 1.0
+    else:
+        i = out.fa
+        j = out.fb
+        top = sec = -INFINITY          # A's lead of edge i along u0, B's of edge j along -u0
+        for k in range(A.nv):
+            if k != A.edges[2 * i] and k != A.edges[2 * i + 1]:
+                x = F.sa * _dot(u0, A.verts + 3 * k)
+                if x > sec:
+                    sec = x
+        epsA = F.sa * _dot(u0, A.verts + 3 * A.edges[2 * i]) - sec
+        x = F.sa * _dot(u0, A.verts + 3 * A.edges[2 * i + 1]) - sec
+        if x < epsA:
+            epsA = x
+        sec = -INFINITY
+        for k in range(B.nv):
+            if k != B.edges[2 * j] and k != B.edges[2 * j + 1]:
+                x = -_dot(u0, &qb[3 * k])
+                if x > sec:
+                    sec = x
+        epsB = -_dot(u0, &qb[3 * B.edges[2 * j]]) - sec
+        x = -_dot(u0, &qb[3 * B.edges[2 * j + 1]]) - sec
+        if x < epsB:
+            epsB = x
+        v0 = A.verts + 3 * A.edges[2 * i]
+        v1 = A.verts + 3 * A.edges[2 * i + 1]
+        for k in range(3):             # the foot V0 u0 = (a0 + s eA) - (b0 + r eB): s, r in (0, 1)
+            eA[k] = F.sa * (v1[k] - v0[k])
+            eB[k] = qb[3 * B.edges[2 * j + 1] + k] - qb[3 * B.edges[2 * j] + k]
+            y[k] = V0 * u0[k] - F.sa * v0[k] + qb[3 * B.edges[2 * j] + k]
+        aa = _dot(eA, eA)
+        bb = _dot(eB, eB)
+        ab = _dot(eA, eB)
+        ay = _dot(eA, y)
+        by = _dot(eB, y)
+        det = ab * ab - aa * bb
+        if not det < 0.0:
+            return 0.0
+        sr = (ab * by - bb * ay) / det
+        rr = (aa * by - ab * ay) / det
+        sn = sqrt(-det / (aa * bb))    # sin of the edges' angle
+        rho = sqrt(aa) * (sr if sr < 1.0 - sr else 1.0 - sr)
+        x = sqrt(bb) * (rr if rr < 1.0 - rr else 1.0 - rr)
+        rho = sn * (rho if rho < x else x)
+        w = 2.25 / sn                  # (2 / sin, with the sine kept above 0.9 its start: c3 below)
+        c3 = 0.1 * sn * rmin / 1.6
+    # the cap: A's lead (fixed in A's frame) bounds it alone; B's lead is shared between the cap and B's
+    # motion, split where the rim term and B's term allow the same budget
+    alpha = 0.5
+    if epsA < INFINITY:
+        alpha = 0.45 * epsA / ra
+    if epsB < INFINITY:
+        x = epsB / (2.0 * rb + 2.0 * kappa * rho / (2.0 * kappa + 1.6 * w * V0 / rmin + 0.016 * w))
+        if x < alpha:
+            alpha = x
+    if alpha > 0.5:
+        alpha = 0.5
+    if not (rho > 0.0 and alpha > 0.0):
+        return 0.0
+    if epsB < INFINITY:                # B's lead also pays for B's motion in A's frame (2 D)
+        x = (epsB - 2.0 * rb * alpha) / (2.0 * kappa)
+        if x < c3:
+            c3 = x
+    x = 1.6 * w * V0 / rmin + 0.016 * w             # the winner's turn, per mu
+    budget = (gap - m) / (2.0 * kappa + 3.2 * F.L / rmin + x)
+    if 0.01 * rmin / kappa < budget:
+        budget = 0.01 * rmin / kappa
+    x = (rho * sin(alpha) - V0 * (1.0 - cos(alpha)) - m) / (2.0 * kappa + x)
+    if x < budget:
+        budget = x
+    if c3 < budget:
+        budget = c3
+    return budget if budget > 0.0 else 0.0
+
+
+cdef int _sat_cached(const Polytope* A, const Polytope* B, const Frame* F, int code, double* u_out,
+                     SatResult* out) noexcept nogil:
+    """The axis of a pair's certificate (code: 1 + face of A, 1 + nf_A + face of B, 1 + nf_A + nf_B + edge
+    of A + ne_A edge of B) evaluated alone, by the code of _sat_frame (same value and normal); returns 0
+    when the code does not fit these bodies or the edges' arcs no longer cross (then run _sat_frame)."""
+    cdef double m[3]
+    cdef double c[3]
+    cdef double dd[3]
+    cdef double qb0[3]
+    cdef double qb1[3]
+    cdef double eB[3]
+    cdef double d
+    cdef const double* a
+    cdef const double* b
+    cdef int i, j, k = code - 1
+    if A.half != NULL and B.half != NULL:
+        return 0
+    if 0 <= k < A.nf:
+        out.axis, out.fa, out.fb, out.depth = AXIS_FACE_A, k, -1, _face_a_value(A, B, F, k)
+        a = A.fnormal + 3 * k
+        u_out[0], u_out[1], u_out[2] = a[0], a[1], a[2]
+        return 1
+    k -= A.nf
+    if 0 <= k < B.nf:
+        mat_vec(F.M, B.fnormal + 3 * k, m)
+        out.axis, out.fa, out.fb, out.depth = AXIS_FACE_B, -1, k, _face_b_value(A, B, F, k, m)
+        u_out[0], u_out[1], u_out[2] = -m[0], -m[1], -m[2]
+        return 1
+    k -= B.nf
+    if not 0 <= k < A.ne * B.ne:
+        return 0
+    i = k % A.ne
+    j = k // A.ne
+    a = A.fnormal + 3 * A.efaces[2 * i]
+    b = A.fnormal + 3 * A.efaces[2 * i + 1]
+    mat_vec(F.M, B.fnormal + 3 * B.efaces[2 * j], c)
+    mat_vec(F.M, B.fnormal + 3 * B.efaces[2 * j + 1], dd)
+    for k in range(3):
+        c[k] = -c[k]
+        dd[k] = -dd[k]
+    if not _arcs_cross(a, b, c, dd):
+        return 0
+    _b_point(B, F, B.edges[2 * j], qb0)
+    _b_point(B, F, B.edges[2 * j + 1], qb1)
+    eB[0] = qb1[0] - qb0[0]
+    eB[1] = qb1[1] - qb0[1]
+    eB[2] = qb1[2] - qb0[2]
+    if _edge_value(A, B, F, i, qb0, eB, _dot(eB, eB), a, b, u_out, &d) <= SAT_PARALLEL * SAT_PARALLEL:
+        return 0
+    out.axis, out.fa, out.fb, out.depth = AXIS_EDGE, i, j, d
+    return 1
 
 
 cdef int sat_penetration(const Polytope* A, const double* Ra, double sa, const double* xa,
@@ -446,7 +827,7 @@ cdef int sat_penetration(const Polytope* A, const double* Ra, double sa, const d
     cdef double u[3]
     cdef int hit
     _frame(A, Ra, sa, xa, B, Rb, sb, xb, &F)
-    hit = _sat_frame(A, B, &F, u, out)
+    hit = _sat_frame(A, B, &F, u, out, NULL)
     mat_vec(Ra, u, out.n)
     out.n[0] = -out.n[0]
     out.n[1] = -out.n[1]
@@ -974,13 +1355,36 @@ cdef int contact_points(const Polytope* A, const double* Ra, double sa, const do
 
 cdef int polytope_contact(const Polytope* A, const double* Ra, double sa, const double* xa,
                           const Polytope* B, const double* Rb, double sb, const double* xb,
-                          double ftol, double ftol_depth, SatResult* sat, PolyContact* out) noexcept nogil:
+                          double ftol, double ftol_depth, SatResult* sat, PolyContact* out,
+                          int* code, double* budget, double moved) noexcept nogil:
     """sat_penetration then contact_points with the feature tolerance ftol + ftol_depth depth, sharing the
-    frame; returns npoints (0: no overlap)."""
+    frame; returns npoints (0: no overlap). code, budget (or NULL): the pair's certificate, kept by the
+    caller between calls (zeroed at first) with moved = the sum of both bodies' moves since the last call:
+    while the budget covers the moves, only the certified axis is evaluated (_budget: the same answer as
+    the full test); else the full test, which renews the certificate."""
     cdef Frame F
     cdef double u[3]
+    cdef int hit
     _frame(A, Ra, sa, xa, B, Rb, sb, xb, &F)
-    if not _sat_frame(A, B, &F, u, sat):
+    if code != NULL and code[0] > 0 and budget[0] > moved and _sat_cached(A, B, &F, code[0], u, sat):
+        budget[0] -= moved
+        hit = sat.depth > 0.0
+        if not hit:                    # (the caller's margin then skips it: its moves would go uncounted)
+            code[0] = 0
+    else:
+        if code != NULL:
+            budget[0] = 0.0            # (two boxes leave it: no certificate)
+        hit = _sat_frame(A, B, &F, u, sat, budget if code != NULL else NULL)
+        if code != NULL:
+            code[0] = 0
+            if budget[0] > 0.0:
+                if sat.axis == AXIS_FACE_A:
+                    code[0] = 1 + sat.fa
+                elif sat.axis == AXIS_FACE_B:
+                    code[0] = 1 + A.nf + sat.fb
+                else:
+                    code[0] = 1 + A.nf + B.nf + sat.fa + A.ne * sat.fb
+    if not hit:
         mat_vec(Ra, u, sat.n)
         sat.n[0], sat.n[1], sat.n[2] = -sat.n[0], -sat.n[1], -sat.n[2]
         out.depth = sat.depth
@@ -1027,7 +1431,7 @@ def pair(TopologyView tv, int ia, int ib, xa, qa, xb, qb, double sa=1.0, double 
         ftol = 1e-9 * (sa * A.radius + sb * B.radius)
     with nogil:
         if points:
-            polytope_contact(&A, &Ra[0], sa, &xa_[0], &B, &Rb[0], sb, &xb_[0], ftol, 0.0, &sat, &pc)
+            polytope_contact(&A, &Ra[0], sa, &xa_[0], &B, &Rb[0], sb, &xb_[0], ftol, 0.0, &sat, &pc, NULL, NULL, 0.0)
         else:
             sat_penetration(&A, &Ra[0], sa, &xa_[0], &B, &Rb[0], sb, &xb_[0], &sat)
             pc.type = PC_NONE
@@ -1057,7 +1461,7 @@ def time_pairs(TopologyView tv, int[::1] ia, int[::1] ib, double[:, ::1] xa, dou
                 polytope_ref(&tv.t, ib[k], &B)
                 if points:
                     hits += polytope_contact(&A, &Ra[k, 0], 1.0, &xa[k, 0], &B, &Rb[k, 0], 1.0, &xb[k, 0],
-                                             ftol, 0.0, &sat, &pc) > 0
+                                             ftol, 0.0, &sat, &pc, NULL, NULL, 0.0) > 0
                 else:
                     hits += sat_penetration(&A, &Ra[k, 0], 1.0, &xa[k, 0], &B, &Rb[k, 0], 1.0, &xb[k, 0], &sat)
     return (time.perf_counter() - t0) / (reps * m), hits

@@ -155,8 +155,9 @@ cdef inline i64 _match(const KeyedView* h, i64 k, const double* b, double tol2, 
 
 def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, const double[:, :, ::1] coeff,
             ShapeView shapes, const double[:, ::1] rot, const double[::1] move,
-            double[::1] margin, double[::1] stats, KeyedBuffers hist, bint use_xi, bint volume, double ftol_rel,
-            double dt, bint advance, double[:, ::1] rec, i64[:, ::1] rec_ij, i64[::1] nrec, i64 start):
+            double[::1] margin, int[::1] cert_code, double[::1] cert_budget, double[::1] stats, KeyedBuffers hist,
+            bint use_xi, bint volume, double ftol_rel, double dt, bint advance, double[:, ::1] rec,
+            i64[:, ::1] rec_ij, i64[::1] nrec, i64 start):
     """Adds the contact forces and torques of list entries from `start` on; returns -1, or the entry to
     resume from when the history buffer is full (dem/_history.pxd). stats receives STATS (summed; the
     caller resets them once per step). With rows in `rec`, every contact point is recorded there (RECW
@@ -170,7 +171,11 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
     dem_convex's poses, once per step. margin[k] caches a lower bound of the gap of entry k (bounding
     spheres, or the largest separation along a candidate axis of the separating-axis query); it shrinks by
     move[i] + move[j] per call and the pair is skipped while it stays positive: the test would find it apart
-    again, and an apart pair has no record, so the cache changes no result (as `convex/gjk`)."""
+    again, and an apart pair has no record, so the cache changes no result (as `convex/gjk`).
+    cert_code[k], cert_budget[k]: entry k's certificate of its separating axis (polytope_contact), zeroed
+    with the margins; kept only while the pair goes through the test at every call, since the budget is
+    spent by the moves of each call (a pair found apart has none: polytope_contact drops it, the culls
+    above zero it)."""
     cdef Particles particles = view.p
     cdef const Particles* P = &particles
     cdef TableView table = shapes.t
@@ -217,6 +222,7 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                 rsum = P.radius[i] + P.radius[j]
                 if r2 >= rsum * rsum:
                     margin[k] = sqrt(r2) - rsum - MARGIN_SAFETY * rsum
+                    cert_code[k] = 0           # a certificate holds only over consecutive queries
                     continue
                 if si < 0:
                     si = P.shape[i]
@@ -247,17 +253,25 @@ def compute(ParticleView view, const i64[::1] offsets, const int[::1] neigh, con
                     if sj != sb:               # (consecutive neighbours mostly share a shape)
                         polytope_ref(TT, sj, &B)
                         sb = sj
-                    # bounding boxes first, unless both are boxes (the query itself stops at a gap)
-                    if A.half == NULL or B.half == NULL:
+                    # bounding boxes first, unless both are boxes (the query itself stops at a gap) or the
+                    # pair holds a certificate (a lasting contact: its axis is evaluated alone)
+                    if ((A.half == NULL or B.half == NULL)
+                            and not (cert_code[k] > 0 and cert_budget[k] > move[i] + move[j])):
                         gap = boxes_gap(Ri, 1.0, &P.x[3 * i], &T.half[3 * si], si_scale,
                                         Rj, 1.0, &P.x[3 * j], &T.half[3 * sj], sj_scale)
                         if gap > 0.0:
                             margin[k] = gap - MARGIN_SAFETY * rsum
+                            cert_code[k] = 0
                             continue
                     # contacting features: the vertices within ftol of the deepest one along the normal,
                     # ftol = ftol_rel L + the overlap, i.e. every vertex inside the overlap slab
-                    npt = polytope_contact(&A, Ri, si_scale, &P.x[3 * i], &B, Rj, sj_scale, &P.x[3 * j],
-                                           ftol_rel * rsum, 1.0, &sat, &pc)
+                    if A.half != NULL and B.half != NULL:   # (two boxes: closed form, no certificate)
+                        npt = polytope_contact(&A, Ri, si_scale, &P.x[3 * i], &B, Rj, sj_scale, &P.x[3 * j],
+                                               ftol_rel * rsum, 1.0, &sat, &pc, NULL, NULL, 0.0)
+                    else:
+                        npt = polytope_contact(&A, Ri, si_scale, &P.x[3 * i], &B, Rj, sj_scale, &P.x[3 * j],
+                                               ftol_rel * rsum, 1.0, &sat, &pc, &cert_code[k], &cert_budget[k],
+                                               move[i] + move[j])
                     if not npt:
                         margin[k] = -sat.depth - MARGIN_SAFETY * rsum
                     typ = pc.type

@@ -98,6 +98,7 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
         self.npoints = 0
         self.contact_types = dict.fromkeys(TYPES, 0)
         self.work = _pair_convex.ConvexWork()   # per-step poses and per-entry margins (as convex/gjk)
+        self._cert, self._cert_for = None, None
         self._rec, self._rec_ij = _NO_POINTS, _NO_POINTS_IJ   # contact points, on the steps a dump writes
         self._nrec = np.zeros(2, np.int64)
         self.contact_points = None
@@ -139,13 +140,22 @@ class PairPolyhedronMultipoint(PairCoefficients, Pair):
 
         def run(start):
             resume = _pair_polyhedron.compute(
-                view, nb.offsets, nb.neigh, self.table, self.shape_view, w.rot, w.move, w.margin,
-                st, buffers, use_xi, self.law == "volume", self.ftol, self.sim.update.dt, advance, self._rec, self._rec_ij, self._nrec, start)
+                view, nb.offsets, nb.neigh, self.table, self.shape_view, w.rot, w.move, w.margin, *self._certs(w),
+                st, buffers, use_xi, self.law == "volume", self.ftol, self.sim.update.dt, advance, self._rec,
+                self._rec_ij, self._nrec, start)
             if self._nrec[1]:                  # the points buffer was full: grow it, resume at that entry
                 self._nrec[1] = 0
                 self._grow_points(2 * len(self._rec) + 16 * MAXP)
             return resume
         return run
+
+    def _certs(self, w):
+        """Per-entry certificates of the separating axis (_pair_polyhedron.compute), zeroed whenever
+        ConvexWork gives fresh margins (a new list)."""
+        if self._cert_for is not w.margin:
+            self._cert_for = w.margin
+            self._cert = (np.zeros(len(w.margin), np.int32), np.zeros(len(w.margin)))
+        return self._cert
 
     def _grow_points(self, rows):
         rec, ij = np.empty((rows, _pair_polyhedron.RECW)), np.empty((rows, 3), np.int64)
