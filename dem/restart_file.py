@@ -6,7 +6,6 @@ physics."""
 import zlib
 from urllib.parse import quote, unquote
 
-import h5py
 import numpy as np
 
 from . import verified_file
@@ -70,7 +69,7 @@ def _put(group, name, value):
 
 def _get(node, path):
     kind = node.attrs.get("kind")
-    if isinstance(node, h5py.Group):
+    if hasattr(node, "keys"):                  # a group (h5py is imported where files are read)
         if kind == "dict":
             return {unquote(k): _get(node[k], f"{path}/{k}") for k in node}
         if kind in ("list", "tuple"):
@@ -113,6 +112,7 @@ def examine(path):
     it; never raises (under MPI rank 0 examines the file and broadcasts the verdict)."""
     problem = verified_file.check(path, KIND)
     if problem is None:
+        import h5py                 # here, not at start-up (40 ms: every run imports this module)
         try:
             with h5py.File(path, "r") as f:
                 if f.attrs.get("format") != MAGIC:
@@ -161,6 +161,7 @@ def read(path, checked=False):
 def read_unchecked(path):
     """The state of an HDF5 restart whose whole-file checksum was checked, or that has none (a version-3
     file that dem-convert-restart converts: HDF5 reads it unchecked, so only files you trust)."""
+    import h5py
     try:
         with h5py.File(path, "r") as f:
             return {unquote(k): _get(f[k], k) for k in f}
