@@ -290,3 +290,20 @@ timestep 1e-7
     assert sim.shapes.rows[0].topology.nf > _volume.MAXF
     with pytest.raises(DemError, match="shape 'ball' has 396 faces"):
         sim.run(1)
+
+
+def test_gas_on_one_and_two_ranks(tmp_path):
+    """The volume law through ghosts: the gas cut across two ranks (forces and couples on ghosts go back to
+    their owners) keeps the energy of one rank to round-off after 2e4 steps (measured: the last digit)."""
+    from conftest import MPIEXEC
+    from test_mpi import run_dem, thermo_rows
+    if MPIEXEC is None:
+        pytest.skip("mpiexec not found")
+    script = gas_input(per_contact=100).replace(
+        "pair_style polyhedron/multipoint", "pair_style polyhedron/multipoint law volume").replace(
+        "thermo 0", "thermo_style custom step etotal\nthermo 20000\nthermo_modify format float %.17g")
+    energy = []
+    for nprocs in (1, 2):
+        run_dem(tmp_path, script + "run 20000\n", nprocs, f"log.{nprocs}")
+        energy.append(float(thermo_rows(tmp_path / f"log.{nprocs}")[-1][1]))
+    assert energy[1] == pytest.approx(energy[0], rel=1e-12)
