@@ -33,6 +33,29 @@ def oscillator(omega0, kr, cr, inertia, t):
     return omega0 * math.exp(-z * w0 * t) * (math.cos(wd * t) - z / math.sqrt(1 - z * z) * math.sin(wd * t))
 
 
+def bonded_jkr_pair(r, rho, E, nu, w, dt, couple):
+    """Two JKR spheres of radius r touching along x at zero net load (contact radius a0 = (9 pi w R*^2 /
+    (2 Y*))^(1/3), overlap a0^2 / (3 R*)), at rest, with `couple` (the rolling or twisting words) after
+    `normal jkr ... en 1 mu 0`: (sim, a0)."""
+    ystar, rs = E / (2 * (1 - nu * nu)), 0.5 * r
+    a0 = (9 * math.pi * w * rs ** 2 / (2 * ystar)) ** (1.0 / 3.0)
+    delta0 = a0 * a0 / (3 * rs)
+    sim = dem.Simulation(screen=False)
+    sim.commands(f"""
+boundary f f f
+region box block -0.001 0.001 -0.001 0.001 -0.001 0.001
+create_box 1 box
+create_atoms 1 single {-r + 0.5 * delta0!r} 0 0 radius {r} density {rho}
+create_atoms 1 single {r - 0.5 * delta0!r} 0 0 radius {r} density {rho}
+pair_style sphere
+pair_coeff * * normal jkr E {E} nu {nu} w {w} en 1 mu 0 {couple}
+fix 1 all nve/sphere
+timestep {dt!r}
+thermo 0
+""")
+    return sim, a0
+
+
 def sphere_on_floor(mu_r, eta, g, omega0, dt):
     """A sphere resting on a Hooke floor at its static overlap m g / kn, spun about x."""
     sim = dem.Simulation(screen=False)
@@ -96,24 +119,10 @@ def test_epsd_between_two_adhesive_spheres_at_zero_load():
     m = rho * 4.0 / 3.0 * math.pi * r ** 3
     inertia = 0.4 * m * r * r
     ystar, rs = E / (2 * (1 - nu * nu)), 0.5 * r
-    a0 = (9 * math.pi * w * rs ** 2 / (2 * ystar)) ** (1.0 / 3.0)     # zero load
-    delta0 = a0 * a0 / (3 * rs)
+    sim, a0 = bonded_jkr_pair(r, rho, E, nu, w, dt, f"rolling epsd mu_roll {mu_r} eta_roll {eta}")
     kr = 2.25 * (4.0 / 3.0 * ystar * a0) * mu_r ** 2 * rs ** 2
     cr = eta * 2 * math.sqrt(0.7 * m * r * r * kr)
     assert math.sqrt(2 * kr * inertia) * omega0 < 0.5 * mu_r * rs * 3 * math.pi * w * rs
-    sim = dem.Simulation(screen=False)
-    sim.commands(f"""
-boundary f f f
-region box block -0.001 0.001 -0.001 0.001 -0.001 0.001
-create_box 1 box
-create_atoms 1 single {-r + 0.5 * delta0!r} 0 0 radius {r} density {rho}
-create_atoms 1 single {r - 0.5 * delta0!r} 0 0 radius {r} density {rho}
-pair_style sphere
-pair_coeff * * normal jkr E {E} nu {nu} w {w} en 1 mu 0 rolling epsd mu_roll {mu_r} eta_roll {eta}
-fix 1 all nve/sphere
-timestep {dt!r}
-thermo 0
-""")
     sim.atom.local("omega")[:] = [[0, omega0, 0] if t == 1 else [0, -omega0, 0] for t in sim.atom.local("tag")]
     sim.run(0)
     period = 2 * math.pi / math.sqrt(2 * kr / inertia)

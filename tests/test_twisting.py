@@ -23,6 +23,7 @@ import pytest
 import dem
 import dem.law
 from lammps_runner import lammps_run, require_lammps
+from test_rolling_epsd import bonded_jkr_pair, oscillator
 
 R, RHO, E, NU, G = 0.002, 2500.0, 1e7, 0.3, 9.81
 M = RHO * 4.0 / 3.0 * math.pi * R ** 3
@@ -31,13 +32,6 @@ YSTAR = E / (2 * (1 - NU * NU))
 GSTAR = E / (2 * (1 + NU)) / (2 * (2 - NU))
 DELTA0 = (3 * M * G / (4 * YSTAR * math.sqrt(R))) ** (2.0 / 3.0)
 A0 = math.sqrt(R * DELTA0)
-
-
-def oscillator(omega0, k, c, inertia, t):
-    w0 = math.sqrt(k / inertia)
-    z = c / (2 * math.sqrt(k * inertia))
-    wd = w0 * math.sqrt(1 - z * z)
-    return omega0 * math.exp(-z * w0 * t) * (math.cos(wd * t) - z / math.sqrt(1 - z * z) * math.sin(wd * t))
 
 
 def spinning_on_floor(law, omega0, dt, delta0=DELTA0, g=G):
@@ -149,24 +143,10 @@ def test_between_two_spheres_both_turn():
     m = rho * 4.0 / 3.0 * math.pi * r ** 3
     inertia = 0.4 * m * r * r
     rs = 0.5 * r
-    a0 = (9 * math.pi * w * rs ** 2 / (2 * YSTAR)) ** (1.0 / 3.0)     # zero load
-    delta0 = a0 * a0 / (3 * rs)
     k = inertia * 2000.0 ** 2
     mu = 1e-4
     assert math.sqrt(2 * k * inertia) * omega0 < 0.5 * mu * 3 * math.pi * w * rs
-    sim = dem.Simulation(screen=False)
-    sim.commands(f"""
-boundary f f f
-region box block -0.001 0.001 -0.001 0.001 -0.001 0.001
-create_box 1 box
-create_atoms 1 single {-r + 0.5 * delta0!r} 0 0 radius {r} density {rho}
-create_atoms 1 single {r - 0.5 * delta0!r} 0 0 radius {r} density {rho}
-pair_style sphere
-pair_coeff * * normal jkr E {E} nu {NU} w {w} en 1 mu 0 twisting sds k_twist {k!r} gamma_twist 0 mu_twist {mu}
-fix 1 all nve/sphere
-timestep {dt!r}
-thermo 0
-""")
+    sim, _ = bonded_jkr_pair(r, rho, E, NU, w, dt, f"twisting sds k_twist {k!r} gamma_twist 0 mu_twist {mu}")
     sim.atom.local("omega")[:] = [[omega0, 0, 0] if t == 1 else [-omega0, 0, 0] for t in sim.atom.local("tag")]
     sim.run(0)
     period = 2 * math.pi / math.sqrt(2 * k / inertia)
