@@ -1409,6 +1409,11 @@ def _pose(q):
     return R
 
 
+def _poses(q):
+    """The rotations (rows of 9) of an array of unit quaternions (benchmarks' batches)."""
+    return np.array([_pose(x) for x in np.asarray(q)]).reshape(-1, 9)
+
+
 def pair(TopologyView tv, int ia, int ib, xa, qa, xb, qb, double sa=1.0, double sb=1.0, double ftol=-1.0,
          bint points=True, bint box_path=True):
     """One pair (rows ia, ib of the packed topology) at poses (x, unit quaternion q (w, x, y, z), scale s).
@@ -1451,8 +1456,8 @@ def time_pairs(TopologyView tv, int[::1] ia, int[::1] ib, double[:, ::1] xa, dou
     cdef Polytope A, B
     cdef SatResult sat
     cdef PolyContact pc
-    cdef double[:, ::1] Ra = np.array([_pose(q) for q in np.asarray(qa)]).reshape(-1, 9)
-    cdef double[:, ::1] Rb = np.array([_pose(q) for q in np.asarray(qb)]).reshape(-1, 9)
+    cdef double[:, ::1] Ra = _poses(qa)
+    cdef double[:, ::1] Rb = _poses(qb)
     t0 = time.perf_counter()
     with nogil:
         for r in range(reps):

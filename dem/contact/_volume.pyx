@@ -26,7 +26,7 @@ from libc.math cimport fabs
 
 from dem._math cimport mat_vec, mat_tvec, cross3, dot3
 from dem.contact._polytope cimport TopologyView, polytope_ref
-from dem.contact._polytope import _pose
+from dem.contact._polytope import _pose, _poses
 
 cdef enum:
     POLY_BUF = VOL_MAXFV + VOL_MAXF     # a clipped face gains at most one vertex per plane
@@ -312,7 +312,14 @@ cdef int overlap_halfspace(const Polytope* A, const double* Ra, double sa, const
 
 
 # ---------------------------------------------------------------- Python entries (tests, tools)
-cdef _result(OverlapVolume* r):
+cdef _result(int hit, OverlapVolume* r):
+    """overlap_volume's answer for Python: (V, S, M, centroid), zeros and nan when apart."""
+    if hit < 0:
+        raise ValueError("a body has more than %d faces or a face more than %d vertices" % (VOL_MAXF, VOL_MAXFV))
+    if hit == 0:
+        r.area[:] = [0.0, 0.0, 0.0]
+        r.moment[:] = [0.0, 0.0, 0.0]
+        r.centroid[:] = [np.nan, np.nan, np.nan]
     return (r.volume, np.array([r.area[0], r.area[1], r.area[2]]),
             np.array([r.moment[0], r.moment[1], r.moment[2]]),
             np.array([r.centroid[0], r.centroid[1], r.centroid[2]]))
@@ -332,13 +339,7 @@ def pair(TopologyView tv, int ia, int ib, xa, qa, xb, qb, double sa=1.0, double 
     polytope_ref(&tv.t, ib, &B)
     with nogil:
         hit = overlap_volume(&A, &Ra[0], sa, &xa_[0], &B, &Rb[0], sb, &xb_[0], &r)
-    if hit < 0:
-        raise ValueError("a body has more than %d faces or a face more than %d vertices" % (VOL_MAXF, VOL_MAXFV))
-    if hit == 0:
-        r.area[:] = [0.0, 0.0, 0.0]
-        r.moment[:] = [0.0, 0.0, 0.0]
-        r.centroid[:] = [np.nan, np.nan, np.nan]
-    return _result(&r)
+    return _result(hit, &r)
 
 
 def halfspace(TopologyView tv, int ia, xa, qa, n, double d, double sa=1.0):
@@ -354,13 +355,7 @@ def halfspace(TopologyView tv, int ia, xa, qa, n, double d, double sa=1.0):
     polytope_ref(&tv.t, ia, &A)
     with nogil:
         hit = overlap_halfspace(&A, &Ra[0], sa, &xa_[0], &n_[0], d, &r)
-    if hit < 0:
-        raise ValueError("a body has more than %d faces or a face more than %d vertices" % (VOL_MAXF, VOL_MAXFV))
-    if hit == 0:
-        r.area[:] = [0.0, 0.0, 0.0]
-        r.moment[:] = [0.0, 0.0, 0.0]
-        r.centroid[:] = [np.nan, np.nan, np.nan]
-    return _result(&r)
+    return _result(hit, &r)
 
 
 def time_pairs(TopologyView tv, int[::1] ia, int[::1] ib, double[:, ::1] xa, double[:, ::1] qa,
@@ -370,8 +365,8 @@ def time_pairs(TopologyView tv, int[::1] ia, int[::1] ib, double[:, ::1] xa, dou
     cdef int m = ia.shape[0], r, k, hits = 0
     cdef Polytope A, B
     cdef OverlapVolume ov
-    cdef double[:, ::1] Ra = np.array([_pose(q) for q in np.asarray(qa)]).reshape(-1, 9)
-    cdef double[:, ::1] Rb = np.array([_pose(q) for q in np.asarray(qb)]).reshape(-1, 9)
+    cdef double[:, ::1] Ra = _poses(qa)
+    cdef double[:, ::1] Rb = _poses(qb)
     t0 = time.perf_counter()
     with nogil:
         for r in range(reps):
