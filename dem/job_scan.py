@@ -86,13 +86,8 @@ def _plan(commands):
         elif first in STEP_UNKNOWN:
             entry.kind = "restart"
         elif first == "if":
-            try:
-                branches = _if_branches(words[1:])
-            except DemError:
-                raise _Unknown(f"{where} is not a valid if") from None
-            for _, branch in branches:
-                for command in branch:
-                    _inner(command, entry, where)
+            for command in _if_commands(words, f"{where} is not a valid if"):
+                _inner(command, entry, where)
         else:
             entry.defines |= _defined(words)
         if entry.kind or entry.defines:
@@ -111,6 +106,15 @@ def _check_loop(words, index, labels, runs, where):
         raise _Unknown(f"{where} repeats a run in a loop")
 
 
+def _if_commands(words, invalid):
+    """Every command of every branch of an `if` line's words (_Unknown with `invalid` when it is not one)."""
+    try:
+        branches = _if_branches(words[1:])
+    except DemError:
+        raise _Unknown(invalid) from None
+    return [command for _, branch in branches for command in branch]
+
+
 def _inner(command, entry, where):
     """A command inside `if` or `run ... every`: it may run or not, or many times."""
     try:
@@ -122,13 +126,8 @@ def _inner(command, entry, where):
     if "$" in words[0] or words[0] in NOT_IN_BRANCH:
         raise _Unknown(f"{where} holds '{_short(command)}', which may or may not happen")
     if words[0] == "if":
-        try:
-            branches = _if_branches(words[1:])
-        except DemError:
-            raise _Unknown(f"{where} holds an if that is not valid") from None
-        for _, branch in branches:
-            for inner in branch:
-                _inner(inner, entry, where)
+        for inner in _if_commands(words, f"{where} holds an if that is not valid"):
+            _inner(inner, entry, where)
     elif words[0] == "reset_timestep" or words[0] in STEP_UNKNOWN:
         entry.defines.add(STEP)                     # the step afterwards is not known
     else:
