@@ -602,6 +602,22 @@ cdef int _sat_frame(const Polytope* A, const Polytope* B, const Frame* F, double
     return 1 if out.depth > 0.0 else 0
 
 
+cdef inline int _lead(const double* pts, int n, double s, const double* u, double* lead) noexcept nogil:
+    """The point of largest s u.p among n points (3 values each); lead receives its margin over the next."""
+    cdef double top = -INFINITY, sec = -INFINITY, x
+    cdef int k, best = -1
+    for k in range(n):
+        x = s * _dot(u, pts + 3 * k)
+        if x > top:
+            sec = top
+            top = x
+            best = k
+        elif x > sec:
+            sec = x
+    lead[0] = top - sec
+    return best
+
+
 cdef double _budget(const Polytope* A, const Polytope* B, const Frame* F, const SatResult* out,
                     const double* u0, double gap, const double* qb) noexcept nogil:
     """How far the bodies may move (mu = the sum of their `move`, dem_convex.poses: how far any point of
@@ -623,7 +639,7 @@ cdef double _budget(const Polytope* A, const Polytope* B, const Frame* F, const 
       by the gap.
     Returns the smallest mu allowed by these conditions (0: none)."""
     cdef double ra = F.sa * A.radius, rb = F.sb * B.radius, rmin, kappa, w, m, V0 = out.depth
-    cdef double rho = INFINITY, eps, epsA = INFINITY, epsB = INFINITY, alpha, c3 = INFINITY, x, top, sec
+    cdef double rho = INFINITY, eps, epsA = INFINITY, epsB = INFINITY, alpha, c3 = INFINITY, x, sec
     cdef double p[3]
     cdef double e[3]
     cdef double y[3]
@@ -638,16 +654,7 @@ cdef double _budget(const Polytope* A, const Polytope* B, const Frame* F, const 
     kappa = 2.5 + 2.0 * (ra if ra > rb else rb) / rmin
     m = 8.0 * SAT_TIE * F.L
     if out.axis == AXIS_FACE_A:
-        top = sec = -INFINITY          # B's support along -u0 and its lead
-        for k in range(B.nv):
-            x = -_dot(u0, &qb[3 * k])
-            if x > top:
-                sec = top
-                top = x
-                vtop = k
-            elif x > sec:
-                sec = x
-        epsB = top - sec
+        vtop = _lead(qb, B.nv, -1.0, u0, &epsB)     # B's support along -u0 and its lead
         for k in range(3):             # the vertex projected on face fa, and its inset in that polygon
             p[k] = qb[3 * vtop + k] + V0 * u0[k]
         first = A.ffirst[out.fa]
@@ -664,16 +671,7 @@ cdef double _budget(const Polytope* A, const Polytope* B, const Frame* F, const 
                 rho = x
         w = 0.0
     elif out.axis == AXIS_FACE_B:
-        top = sec = -INFINITY          # A's support along u0 and its lead
-        for k in range(A.nv):
-            x = F.sa * _dot(u0, A.verts + 3 * k)
-            if x > top:
-                sec = top
-                top = x
-                vtop = k
-            elif x > sec:
-                sec = x
-        epsA = top - sec
+        vtop = _lead(A.verts, A.nv, F.sa, u0, &epsA)     # A's support along u0 and its lead
         for k in range(3):
             p[k] = F.sa * A.verts[3 * vtop + k] - V0 * u0[k]
             nn[k] = -u0[k]             # B's outward normal
@@ -693,7 +691,7 @@ cdef double _budget(const Polytope* A, const Polytope* B, const Frame* F, const 
     else:
         i = out.fa
         j = out.fb
-        top = sec = -INFINITY          # A's lead of edge i along u0, B's of edge j along -u0
+        sec = -INFINITY                # A's lead of edge i along u0, B's of edge j along -u0
         for k in range(A.nv):
             if k != A.edges[2 * i] and k != A.edges[2 * i + 1]:
                 x = F.sa * _dot(u0, A.verts + 3 * k)
