@@ -69,15 +69,18 @@ def qmul(p, q):
     return np.r_[p[0] * q[0] - p[1:] @ q[1:], p[0] * q[1:] + q[0] * p[1:] + np.cross(p[1:], q[1:])]
 
 
-def two_cubes(law, extra="", en=1.0, mu=0.0, dt=1e-7, qb="1 0 0 0", zb=L, vb=0.0):
-    sim = dem.Simulation(screen=False)
-    sim.commands(f"""units si
+CUBE = f"""units si
 boundary f f f
 region box block -0.01 0.01 -0.01 0.01 -0.01 0.01
 create_box 1 box
 shape c cube {L}
 create_atoms 1 single 0 0 0 shape c density {RHO}
-create_atoms 1 single 0 0 {zb!r} shape c density {RHO} quat {qb} v 0 0 {vb!r}
+"""                                # a cube at the origin of a closed box: the start of the small cases
+
+
+def two_cubes(law, extra="", en=1.0, mu=0.0, dt=1e-7, qb="1 0 0 0", zb=L, vb=0.0):
+    sim = dem.Simulation(screen=False)
+    sim.commands(CUBE + f"""create_atoms 1 single 0 0 {zb!r} shape c density {RHO} quat {qb} v 0 0 {vb!r}
 pair_style polyhedron/multipoint law {law}
 pair_coeff * * kn {KN} en {en} mu {mu} gamma_t 2000
 fix integrate all nve/shape
@@ -219,13 +222,7 @@ def test_cube_rests_on_the_floor_and_on_a_cube_without_spin():
 ])
 def test_bad_input(text, message):
     sim = dem.Simulation(screen=False)
-    sim.commands(f"""units si
-boundary f f f
-region box block -0.01 0.01 -0.01 0.01 -0.01 0.01
-create_box 1 box
-shape c cube {L}
-create_atoms 1 single 0 0 0 shape c density {RHO}
-""")
+    sim.commands(CUBE)
     with pytest.raises(DemError, match=message):
         sim.commands(text)
 
